@@ -1,0 +1,10 @@
+"""The ``skisnow`` command line: thin, it parses, calls the library and renders.
+
+Each concern has its own module that adds commands to the shared Typer :data:`app`; importing
+them here registers the commands.
+"""
+
+from skisnow.cli import _contact, _demo, _micro, _network, _ski, _sweep  # noqa: F401  (registers)
+from skisnow.cli._app import app, main
+
+__all__ = ["app", "main"]

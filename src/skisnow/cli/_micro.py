@@ -1,0 +1,1 @@
+"""Commands for the real contact: topo, grind, bearing, rank."""

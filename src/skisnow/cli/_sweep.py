@@ -1,0 +1,1 @@
+"""Commands for maps over load and snow: sweep, plot, report."""

@@ -1,0 +1,1 @@
+"""Figures (Matplotlib, imported only here). Numerics never import this package."""

@@ -1,0 +1,1 @@
+"""The ski at the macro scale: beam model, shipped virtual skis, virtual bench, metrics, network."""

@@ -1,0 +1,27 @@
+"""Shared test fixtures."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+REPO = Path(__file__).resolve().parents[1]
+SHARED = REPO.parent / "shared"
+
+
+@pytest.fixture(scope="session")
+def shared_dir() -> Path:
+    """``../shared`` beside the checkout; tests that need it skip cleanly where it is absent."""
+    if not SHARED.is_dir():
+        pytest.skip("../shared is not present beside this checkout (as in a user's clone)")
+    return SHARED
+
+
+@pytest.fixture(scope="session")
+def topography_dir(shared_dir: Path) -> Path:
+    """The five real instrument files of ``../shared/data/topographies``."""
+    d = shared_dir / "data" / "topographies"
+    if not d.is_dir():
+        pytest.skip("../shared/data/topographies is not present")
+    return d

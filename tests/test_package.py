@@ -1,0 +1,33 @@
+"""The package's own contract: version, error hierarchy, CLI error handling."""
+
+from __future__ import annotations
+
+import pytest
+
+import skisnow
+from skisnow.cli import main
+
+
+def test_error_hierarchy_refines_builtins() -> None:
+    assert issubclass(skisnow.InputError, ValueError)
+    assert issubclass(skisnow.FileFormatError, skisnow.InputError)
+    assert issubclass(skisnow.ConvergenceError, RuntimeError)
+    for cls in (skisnow.InputError, skisnow.ConvergenceError, skisnow.UnsupportedLoadError):
+        assert issubclass(cls, skisnow.SkisnowError)
+
+
+def test_convergence_error_carries_result() -> None:
+    err = skisnow.ConvergenceError("not converged", result={"residual": 1.0})
+    assert err.result == {"residual": 1.0}
+
+
+def test_cli_version(capsys: pytest.CaptureFixture[str]) -> None:
+    assert main(["--version"]) == 0
+    assert skisnow.__version__ in capsys.readouterr().out
+
+
+def test_cli_unknown_command_is_an_error_not_a_traceback(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    assert main(["no-such-command"]) != 0
+    assert "Traceback" not in capsys.readouterr().err
