@@ -1,0 +1,338 @@
+"""Half-space influence coefficients and the non-periodic FFT convolution that applies them.
+
+Convention (used by every kernel here and by the whole contact package): the *equivalent
+modulus* ``modulus`` is the paper's E' of eq. 2 (Kalliorinne et al. 2023),
+
+    2/E' = (1 − ν_base²)/E_base + (1 − ν_counter²)/E_counter,
+
+which is **twice** the contact modulus E* of Hertz/Johnson (1/E* = Σ (1 − ν²)/E). The normal
+surface displacement of the equivalent half-space under a pressure p [Pa] is then
+
+    u(x, y) = 2/(π E') ∬ p(ξ, η) / √((x − ξ)² + (y − η)²) dξ dη          (Boussinesq)
+
+and, in plane strain (per unit width, up to a rigid constant),
+
+    u(x) = −4/(π E') ∫ p(ξ) ln(|x − ξ| / L_ref) dξ.
+
+Influence coefficients are exact for a *uniform* pressure on each cell (Love 1929 for the
+rectangle; the strip and line versions are integrated in closed form below) and are collocated
+at the cell centres. They are returned for every offset ``-(n-1) .. n-1`` so that the
+displacement is a linear (aperiodic) convolution; :class:`Convolution` evaluates it with a
+zero-padded real FFT (circulant embedding of size ≥ 2n − 1), so nothing wraps around.
+
+Public names (stable; the micro area builds on them): :func:`surface_kernel`,
+:func:`strip_kernel`, :func:`line_kernel`, :class:`Convolution` and the shortcuts
+:func:`surface_convolution`, :func:`strip_convolution`, :func:`line_convolution`.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass, field
+
+import numpy as np
+import scipy.fft as sfft
+
+from skisnow._errors import InputError
+
+__all__ = [
+    "Convolution",
+    "default_workers",
+    "line_convolution",
+    "line_kernel",
+    "strip_convolution",
+    "strip_kernel",
+    "surface_convolution",
+    "surface_kernel",
+]
+
+
+def default_workers() -> int:
+    """Threads for the FFTs: all cores the process may use (``os.sched_getaffinity``)."""
+    try:
+        return max(1, len(os.sched_getaffinity(0)))
+    except AttributeError:  # pragma: no cover - not on Linux
+        return max(1, os.cpu_count() or 1)
+
+
+def _positive(name: str, value: float) -> float:
+    value = float(value)
+    if not np.isfinite(value) or value <= 0.0:
+        raise InputError(f"{name} must be a finite positive number, got {value!r}")
+    return value
+
+
+def _count(name: str, value: int) -> int:
+    if int(value) != value or int(value) < 1:
+        raise InputError(f"{name} must be a positive integer, got {value!r}")
+    return int(value)
+
+
+def _offsets(n: int, dx: float) -> np.ndarray:
+    """Centre-to-centre offsets -(n-1)·dx .. (n-1)·dx."""
+    return np.arange(-(n - 1), n, dtype=np.float64) * dx
+
+
+def _love_primitive(u: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """F(u, v) with ∂²F/∂u∂v = 1/√(u² + v²): F = u·asinh(v/|u|) + v·asinh(u/|v|).
+
+    Terms in u or v alone are dropped (they cancel in the four-corner sum); F(0, ·) and
+    F(·, 0) are the limits (0·asinh(∞) → 0).
+    """
+    au, av = np.abs(u), np.abs(v)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        t1 = np.where(au > 0.0, u * np.arcsinh(v / np.where(au > 0.0, au, 1.0)), 0.0)
+        t2 = np.where(av > 0.0, v * np.arcsinh(u / np.where(av > 0.0, av, 1.0)), 0.0)
+    return t1 + t2
+
+
+def surface_kernel(shape: tuple[int, int], dx: float, dy: float, *, modulus: float) -> np.ndarray:
+    """Boussinesq–Love influence coefficients of a grid of rectangular cells (3D half-space).
+
+    Parameters
+    ----------
+    shape
+        ``(nx, ny)`` cells of the pressure grid (x along the first axis).
+    dx, dy
+        Cell sizes [m].
+    modulus
+        Equivalent modulus E' of eq. 2 [Pa] (= 2·E* of Hertz/Johnson).
+
+    Returns
+    -------
+    ndarray, shape ``(2nx − 1, 2ny − 1)``
+        ``K[i + nx − 1, j + ny − 1]`` is the displacement [m] at the centre of the cell offset
+        by ``(i·dx, j·dy)`` from a cell carrying a uniform pressure of 1 Pa (Love 1929):
+        u = 2/(π E') Σ_corners ±F(x ± dx/2, y ± dy/2), F(u, v) = u·asinh(v/|u|) + v·asinh(u/|v|).
+    """
+    nx, ny = (_count("shape[0]", shape[0]), _count("shape[1]", shape[1]))
+    dx, dy = _positive("dx", dx), _positive("dy", dy)
+    modulus = _positive("modulus", modulus)
+    x = _offsets(nx, dx)[:, None]
+    y = _offsets(ny, dy)[None, :]
+    a, b = dx / 2.0, dy / 2.0
+    integral = (
+        _love_primitive(x + a, y + b)
+        - _love_primitive(x - a, y + b)
+        - _love_primitive(x + a, y - b)
+        + _love_primitive(x - a, y - b)
+    )
+    return 2.0 / (np.pi * modulus) * integral
+
+
+def _strip_primitive(u: np.ndarray, w: float) -> np.ndarray:
+    """h(u) = (2/w)·∫₀ʷ (w − s)·asinh(u/s) ds in closed form (odd in u).
+
+    With A = ∫₀ʷ asinh(u/s) ds = w·asinh(u/w) + u·asinh(w/|u|) and
+    B = ∫₀ʷ s·asinh(u/s) ds = (w²/2)·asinh(u/w) + (u/2)(√(w² + u²) − |u|), h = (2/w)(w·A − B).
+    """
+    au = np.abs(u)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ua = np.where(au > 0.0, u * np.arcsinh(w / np.where(au > 0.0, au, 1.0)), 0.0)
+    asw = np.arcsinh(u / w)
+    a_int = w * asw + ua
+    b_int = 0.5 * w * w * asw + 0.5 * u * (np.hypot(w, u) - au)
+    return (2.0 / w) * (w * a_int - b_int)
+
+
+def strip_kernel(n: int, dx: float, width: float, *, modulus: float) -> np.ndarray:
+    """Influence coefficients of a 1D strip of cells along a ski of constant width (3D half-space).
+
+    Each cell ``[x − dx/2, x + dx/2] × [−w/2, w/2]`` carries a pressure that is uniform across the
+    width; the displacement is the *width average* of the Boussinesq displacement at the cell's
+    centre station (a Galerkin reduction across the width, exact in closed form):
+
+        K(x) = 2/(π E') · (1/w) ∫∫_{[−w/2, w/2]²} ∫_{x−dx/2}^{x+dx/2} dξ / √(ξ² + (y − η)²) dη dy.
+
+    Parameters
+    ----------
+    n
+        Number of cells along the ski.
+    dx
+        Cell length [m].
+    width
+        Ski width w [m].
+    modulus
+        Equivalent modulus E' of eq. 2 [Pa].
+
+    Returns
+    -------
+    ndarray, shape ``(2n − 1,)``
+        Displacement [m] per unit pressure [Pa] at offsets ``-(n-1)·dx .. (n-1)·dx``.
+    """
+    n = _count("n", n)
+    dx, width = _positive("dx", dx), _positive("width", width)
+    modulus = _positive("modulus", modulus)
+    x = _offsets(n, dx)
+    integral = _strip_primitive(x + dx / 2.0, width) - _strip_primitive(x - dx / 2.0, width)
+    return 2.0 / (np.pi * modulus) * integral
+
+
+def line_kernel(n: int, dx: float, *, modulus: float, reference_length: float = 1.0) -> np.ndarray:
+    """Plane-strain influence coefficients (per unit width), logarithmic kernel.
+
+    u(x) = −4/(π E') ∫_{cell} ln(|x − ξ| / L_ref) dξ per unit pressure (the 2D Boussinesq–
+    Flamant solution; 4/(π E') = 2/(π E*)). The displacement of a 2D half-space is defined only
+    up to a rigid constant: ``reference_length`` L_ref [m] fixes it (the depth at which the
+    displacement is zero); load control does not depend on it.
+
+    Returns
+    -------
+    ndarray, shape ``(2n − 1,)``
+        Displacement [m] per unit pressure [Pa] at offsets ``-(n-1)·dx .. (n-1)·dx``.
+    """
+    n = _count("n", n)
+    dx = _positive("dx", dx)
+    modulus = _positive("modulus", modulus)
+    ref = _positive("reference_length", reference_length)
+    x = _offsets(n, dx)
+
+    def phi(t: np.ndarray) -> np.ndarray:  # ∫ ln(|t|/L) dt = t·ln(|t|/L) − t
+        at = np.abs(t)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            tl = np.where(at > 0.0, t * np.log(np.where(at > 0.0, at, 1.0) / ref), 0.0)
+        return tl - t
+
+    return -4.0 / (np.pi * modulus) * (phi(x + dx / 2.0) - phi(x - dx / 2.0))
+
+
+@dataclass(frozen=True, eq=False)
+class Convolution:
+    """Aperiodic convolution ``u = K * p`` by a zero-padded real FFT, kernel spectrum precomputed.
+
+    Build it with :meth:`from_kernel` (or the ``*_convolution`` shortcuts). Calling it maps a
+    pressure field of :attr:`shape` [Pa] to the displacement field [m] of the same shape.
+    Batches are allowed: extra *leading* axes are convolved independently.
+
+    Attributes
+    ----------
+    shape
+        Shape of the pressure grid (1 or 2 axes).
+    fft_shape
+        Padded transform shape (each axis ≥ 2n − 1, a fast length for ``scipy.fft``).
+    spectrum
+        ``rfftn`` of the circulant-embedded kernel; real when the kernel is even (the half-space
+        kernels are), which halves the cost of the product.
+    workers
+        Threads used by ``scipy.fft``.
+    """
+
+    shape: tuple[int, ...]
+    fft_shape: tuple[int, ...]
+    spectrum: np.ndarray = field(repr=False)
+    workers: int = 1
+
+    @classmethod
+    def from_kernel(
+        cls, kernel: np.ndarray, shape: tuple[int, ...] | int, *, workers: int | None = None
+    ) -> Convolution:
+        """Precompute the spectrum of a kernel given at offsets ``-(n-1) .. n-1`` per axis."""
+        shape = (int(shape),) if np.isscalar(shape) else tuple(int(s) for s in shape)
+        kernel = np.asarray(kernel, dtype=np.float64)
+        expected = tuple(2 * n - 1 for n in shape)
+        if kernel.shape != expected:
+            raise InputError(
+                f"kernel has shape {kernel.shape}; for a grid of shape {shape} it must have "
+                f"shape {expected} (offsets -(n-1)..n-1 on every axis)"
+            )
+        fft_shape = tuple(sfft.next_fast_len(2 * n - 1, real=True) for n in shape)
+        # circulant embedding: offset k goes to index k mod L
+        embedded = np.zeros(fft_shape)
+        src = kernel
+        for axis, n in enumerate(shape):
+            src = np.roll(src, -(n - 1), axis=axis)  # offset 0 first, then 1..n-1, then -(n-1)..-1
+        index = []
+        for n, size in zip(shape, fft_shape, strict=True):
+            idx = np.concatenate([np.arange(n), np.arange(size - (n - 1), size)])
+            index.append(idx)
+        embedded[np.ix_(*index)] = src
+        workers = default_workers() if workers is None else max(1, int(workers))
+        spectrum = sfft.rfftn(embedded, workers=workers)
+        even = all(np.allclose(kernel, np.flip(kernel, axis=a)) for a in range(kernel.ndim))
+        if even:
+            spectrum = np.ascontiguousarray(spectrum.real)
+        return cls(shape=shape, fft_shape=fft_shape, spectrum=spectrum, workers=workers)
+
+    @property
+    def ndim(self) -> int:
+        """Number of grid axes."""
+        return len(self.shape)
+
+    def __call__(self, pressure: np.ndarray) -> np.ndarray:
+        """Displacement [m] at the cell centres due to ``pressure`` [Pa] (same shape)."""
+        p = np.asarray(pressure, dtype=np.float64)
+        if p.shape[p.ndim - self.ndim :] != self.shape:
+            raise InputError(
+                f"pressure has shape {p.shape}; the operator was built for grids of shape "
+                f"{self.shape}"
+            )
+        if self.ndim == 1:
+            spec = sfft.rfft(p, n=self.fft_shape[0], axis=-1, workers=self.workers)
+            spec *= self.spectrum
+            return sfft.irfft(spec, n=self.fft_shape[0], axis=-1, workers=self.workers)[
+                ..., : self.shape[0]
+            ]
+        if self.ndim == 2:
+            # axis by axis, skipping the transforms of rows that are known to be zero (padding)
+            (nx, ny), (lx, ly) = self.shape, self.fft_shape
+            spec = sfft.rfft(p, n=ly, axis=-1, workers=self.workers)
+            spec = sfft.fft(spec, n=lx, axis=-2, workers=self.workers, overwrite_x=True)
+            spec *= self.spectrum
+            spec = sfft.ifft(spec, axis=-2, workers=self.workers, overwrite_x=True)[..., :nx, :]
+            return sfft.irfft(spec, n=ly, axis=-1, workers=self.workers)[..., :ny]
+        axes = tuple(range(p.ndim - self.ndim, p.ndim))
+        spec = sfft.rfftn(p, s=self.fft_shape, axes=axes, workers=self.workers)
+        spec *= self.spectrum
+        out = sfft.irfftn(spec, s=self.fft_shape, axes=axes, workers=self.workers)
+        return out[(..., *(slice(0, n) for n in self.shape))]
+
+    @property
+    def self_influence(self) -> float:
+        """Self-influence coefficient K(0) [m/Pa]: a cell's displacement under its own 1 Pa."""
+        # inverse DFT at index 0 = mean of the full (Hermitian) spectrum
+        return float(_self_coefficient(self))
+
+
+def _self_coefficient(conv: Convolution) -> float:
+    unit = np.zeros(conv.shape)
+    unit[(0,) * conv.ndim] = 1.0
+    return float(conv(unit)[(0,) * conv.ndim])
+
+
+def surface_convolution(
+    shape: tuple[int, int],
+    dx: float,
+    dy: float,
+    *,
+    modulus: float,
+    workers: int | None = None,
+) -> Convolution:
+    """:class:`Convolution` for :func:`surface_kernel` on a ``(nx, ny)`` grid."""
+    return Convolution.from_kernel(
+        surface_kernel(shape, dx, dy, modulus=modulus), tuple(shape), workers=workers
+    )
+
+
+def strip_convolution(
+    n: int, dx: float, width: float, *, modulus: float, workers: int | None = None
+) -> Convolution:
+    """:class:`Convolution` for :func:`strip_kernel` on ``n`` cells."""
+    return Convolution.from_kernel(
+        strip_kernel(n, dx, width, modulus=modulus), (n,), workers=workers
+    )
+
+
+def line_convolution(
+    n: int,
+    dx: float,
+    *,
+    modulus: float,
+    reference_length: float = 1.0,
+    workers: int | None = None,
+) -> Convolution:
+    """:class:`Convolution` for :func:`line_kernel` on ``n`` cells."""
+    return Convolution.from_kernel(
+        line_kernel(n, dx, modulus=modulus, reference_length=reference_length),
+        (n,),
+        workers=workers,
+    )
