@@ -1,0 +1,175 @@
+"""The grid of a sweep: which skis, masses, load positions and snow moduli, and how each point is
+solved. Pure data; no Dask, no I/O.
+
+A sweep is cut into *chunks* of one ski × one load position × one snow modulus × **all** masses:
+coarse enough that a Dask task is worth its overhead (126 contact solves for the paper's Figure 8/9
+grid), and ordered along the load path so that each solve is warm-started from the pressure of the
+previous, slightly lighter, mass.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import asdict, dataclass, field
+from typing import Any
+
+import numpy as np
+
+from skisnow._errors import InputError
+
+#: Contact models the sweep can ask the contact solver for.
+MODELS: tuple[str, ...] = ("strip", "surface")
+#: Where the loaded camber profile comes from (``skisnow.ski.camber_profile(source=...)``).
+PROFILE_SOURCES: tuple[str, ...] = ("network", "beam")
+#: The zones reported for every contact solution (``skisnow.contact.contact_zones``).
+ZONES: tuple[str, ...] = ("rear", "middle", "front", "total")
+
+#: Ski base modulus E_base and Poisson ratio ν of Kalliorinne et al. 2023, §3.2 (used in eq. 2).
+PAPER_BASE_MODULUS: float = 900e6
+PAPER_POISSON: float = 0.3
+
+
+def parse_values(text: str, *, name: str = "values") -> np.ndarray:
+    """Parse a grid given in field units: ``"5:130:1"`` (start:stop:step, stop included when it
+    lies on the grid), ``"-120"`` (one value) or ``"30,60,90"`` (a list).
+
+    Returns the values as float64 (unchanged units). Raises :class:`InputError` naming ``name``.
+    """
+    text = text.strip()
+    try:
+        if ":" in text:
+            parts = [float(p) for p in text.split(":")]
+            if len(parts) != 3:
+                raise ValueError
+            start, stop, step = parts
+            if not (math.isfinite(start) and math.isfinite(stop) and math.isfinite(step)):
+                raise ValueError
+            if step <= 0 or stop < start:
+                raise InputError(
+                    f"{name}: range {text!r} needs step > 0 and stop >= start (start:stop:step)"
+                )
+            n = math.floor((stop - start) / step + 1e-9) + 1
+            # Rounded so that 20:400:20 gives exactly 20.0, 40.0, ... (no accumulated float noise).
+            return np.round(start + step * np.arange(n), 9)
+        values = np.array([float(p) for p in text.split(",") if p.strip() != ""])
+    except InputError:
+        raise
+    except ValueError:
+        raise InputError(
+            f"{name}: cannot read {text!r}; expected start:stop:step, one number, or a "
+            "comma-separated list"
+        ) from None
+    if values.size == 0 or not np.all(np.isfinite(values)):
+        raise InputError(f"{name}: {text!r} holds no finite values")
+    return values
+
+
+def _as_sorted_unique(values: Any, name: str, *, positive: bool) -> tuple[float, ...]:
+    arr = np.atleast_1d(np.asarray(values, dtype=float))
+    if arr.ndim != 1 or arr.size == 0:
+        raise InputError(f"{name}: need a non-empty 1-D list of values, got shape {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise InputError(f"{name}: all values must be finite, got {arr.tolist()}")
+    if positive and np.any(arr <= 0):
+        raise InputError(f"{name}: all values must be > 0, got min {arr.min()}")
+    uniq = np.unique(arr)
+    if uniq.size != arr.size:
+        raise InputError(f"{name}: values must be distinct, got {arr.tolist()}")
+    return tuple(float(v) for v in uniq)
+
+
+@dataclass(frozen=True, kw_only=True)
+class SweepSpec:
+    """What a sweep computes, in SI units.
+
+    Attributes:
+        skis: shipped ski names (``skisnow.ski.SHIPPED_SKIS``).
+        masses: loads as masses [kg]; sorted ascending (the warm-start path).
+        load_positions: load positions x_m [m] from the balance point, positive toward the tip.
+        snow_moduli: elastic moduli of the snow E_counter [Pa].
+        model: contact model of the solver, ``'strip'`` or ``'surface'``.
+        profile_source: ``'network'`` (the shipped pretrained network) or ``'beam'``.
+        n_points: grid points along the ski for the profile and the contact solve.
+        base_modulus: E_base of the ski base [Pa]; with ``poisson`` it gives E' (eq. 2).
+        poisson: Poisson ratio ν of both bodies (eq. 2).
+    """
+
+    skis: tuple[str, ...]
+    masses: tuple[float, ...]
+    load_positions: tuple[float, ...]
+    snow_moduli: tuple[float, ...]
+    model: str = "strip"
+    profile_source: str = "network"
+    n_points: int = 4096
+    base_modulus: float = PAPER_BASE_MODULUS
+    poisson: float = PAPER_POISSON
+    zones: tuple[str, ...] = field(default=ZONES)
+
+    def __post_init__(self) -> None:
+        skis = (self.skis,) if isinstance(self.skis, str) else tuple(self.skis)
+        if not skis or len(set(skis)) != len(skis) or not all(isinstance(s, str) for s in skis):
+            raise InputError(f"skis: need distinct ski names, got {skis!r}")
+        object.__setattr__(self, "skis", skis)
+        object.__setattr__(self, "masses", _as_sorted_unique(self.masses, "masses", positive=True))
+        object.__setattr__(
+            self,
+            "load_positions",
+            _as_sorted_unique(self.load_positions, "load_positions", positive=False),
+        )
+        object.__setattr__(
+            self, "snow_moduli", _as_sorted_unique(self.snow_moduli, "snow_moduli", positive=True)
+        )
+        if self.model not in MODELS:
+            raise InputError(f"model: {self.model!r} is not one of {MODELS}")
+        if self.profile_source not in PROFILE_SOURCES:
+            raise InputError(
+                f"profile_source: {self.profile_source!r} is not one of {PROFILE_SOURCES}"
+            )
+        if int(self.n_points) != self.n_points or self.n_points < 16:
+            raise InputError(f"n_points: need an integer >= 16, got {self.n_points!r}")
+        object.__setattr__(self, "n_points", int(self.n_points))
+        if not (self.base_modulus > 0 and math.isfinite(self.base_modulus)):
+            raise InputError(f"base_modulus: need a finite value > 0 Pa, got {self.base_modulus}")
+        if not (-1.0 < self.poisson < 0.5):
+            raise InputError(f"poisson: need -1 < ν < 0.5, got {self.poisson}")
+        object.__setattr__(self, "zones", tuple(self.zones))
+
+    # ----------------------------------------------------------------------------------------
+    @property
+    def shape(self) -> tuple[int, int, int, int, int]:
+        """Dataset shape (ski, mass, load position, snow modulus, zone)."""
+        return (
+            len(self.skis),
+            len(self.masses),
+            len(self.load_positions),
+            len(self.snow_moduli),
+            len(self.zones),
+        )
+
+    def chunks(self) -> list[tuple[int, int, int]]:
+        """All chunk keys ``(ski_index, load_position_index, snow_modulus_index)``."""
+        return [
+            (i, j, k)
+            for i in range(len(self.skis))
+            for j in range(len(self.load_positions))
+            for k in range(len(self.snow_moduli))
+        ]
+
+    @property
+    def n_points_total(self) -> int:
+        """Number of contact solves of the sweep."""
+        n_s, n_m, n_p, n_e, _ = self.shape
+        return n_s * n_m * n_p * n_e
+
+    def to_json(self) -> str:
+        """Canonical JSON (sorted keys): stored in the Zarr attributes and compared on resume."""
+        return json.dumps(asdict(self), sort_keys=True)
+
+    @classmethod
+    def from_json(cls, text: str) -> SweepSpec:
+        """Inverse of :meth:`to_json`."""
+        d = json.loads(text)
+        for key in ("skis", "masses", "load_positions", "snow_moduli", "zones"):
+            d[key] = tuple(d[key])
+        return cls(**d)

@@ -1,0 +1,251 @@
+"""Running a sweep on Dask, chunk by chunk into a Zarr store, resumable after any interruption.
+
+The client (this process) owns the store: workers only compute a chunk and return its small result
+arrays; the client writes each result with ``to_zarr(region=...)`` as soon as it arrives and then
+sets the chunk's completion marker. So the same code runs on a local cluster and on a remote
+``dask.distributed`` cluster that shares no file system with this machine, and no two writers ever
+race on the store.
+"""
+
+from __future__ import annotations
+
+import os
+import time
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from skisnow._errors import InputError, SkisnowError
+from skisnow.sweep._grid import SweepSpec
+from skisnow.sweep._store import SPEC_ATTR, check_same_sweep, create_store, done_chunks, write_chunk
+
+#: A chunk function computes one chunk: (spec, ski name, load position [m], snow modulus [Pa]) ->
+#: {variable: array of shape (n_mass, n_zone) or (n_mass,)} (see ``skisnow.sweep.VARIABLES``).
+ChunkFunction = Callable[[SweepSpec, str, float, float], Mapping[str, np.ndarray]]
+
+#: Progress callback: (chunks done so far, chunks to do in this run, key of the chunk just done).
+ProgressCallback = Callable[[int, int, tuple[int, int, int]], None]
+
+
+@dataclass(frozen=True, kw_only=True)
+class SweepRun:
+    """What a call of :func:`run_sweep` did.
+
+    Attributes:
+        path: the Zarr store.
+        spec: the sweep.
+        computed: chunk keys computed (and written) in this run, in completion order.
+        skipped: chunk keys found complete in the store and not recomputed.
+        wall_time: seconds from start to the last write (cluster start-up included).
+        compute_time: seconds from the first submitted task to the last write.
+        workers: number of Dask workers used (0 = in-process).
+    """
+
+    path: Path
+    spec: SweepSpec
+    computed: tuple[tuple[int, int, int], ...]
+    skipped: tuple[tuple[int, int, int], ...]
+    wall_time: float
+    compute_time: float
+    workers: int
+
+
+def _chunk_task(
+    fn: ChunkFunction, spec: SweepSpec, key: tuple[int, int, int]
+) -> tuple[tuple[int, int, int], dict[str, np.ndarray]]:
+    i, j, k = key
+    out = fn(spec, spec.skis[i], spec.load_positions[j], spec.snow_moduli[k])
+    return key, {name: np.asarray(v) for name, v in out.items()}
+
+
+def _function_name(fn: Callable[..., Any]) -> str:
+    return f"{getattr(fn, '__module__', '?')}.{getattr(fn, '__qualname__', repr(fn))}"
+
+
+def _attrs(spec: SweepSpec, fn: ChunkFunction) -> dict[str, Any]:
+    from skisnow import __version__
+    from skisnow.constants import STANDARD_GRAVITY
+
+    return {
+        "title": "skisnow sweep of the apparent ski–snow contact",
+        "skisnow_version": __version__,
+        SPEC_ATTR: spec.to_json(),
+        "chunk_function": _function_name(fn),
+        "skis": ", ".join(spec.skis),
+        "model": spec.model,
+        "profile_source": spec.profile_source,
+        "n_points": spec.n_points,
+        "base_modulus_mpa": spec.base_modulus / 1e6,
+        "poisson_ratio": spec.poisson,
+        "standard_gravity_m_s2": STANDARD_GRAVITY,
+        "source": "Kalliorinne et al., Lubricants 2023 (eq. 2-3, Figures 8-9): method",
+    }
+
+
+def prepare_store(
+    path: str | Path, spec: SweepSpec, fn: ChunkFunction
+) -> set[tuple[int, int, int]]:
+    """Create the store, or check that an existing one holds the same sweep.
+
+    Returns the set of chunk keys already complete.
+    """
+    import zarr
+
+    path = Path(path)
+    attrs = _attrs(spec, fn)
+    if path.exists():
+        try:
+            stored = dict(zarr.open_group(str(path), mode="r").attrs)
+        except Exception as exc:
+            raise InputError(
+                f"{path} exists but is not a Zarr store ({type(exc).__name__}); choose another "
+                "--out"
+            ) from None
+        check_same_sweep(path, spec, stored)
+        if stored.get("chunk_function") != attrs["chunk_function"]:
+            raise InputError(
+                f"{path} was computed with chunk function {stored.get('chunk_function')!r}, not "
+                f"{attrs['chunk_function']!r}; resuming would mix two computations"
+            )
+        return done_chunks(path, spec)
+    create_store(path, spec, attrs=attrs)
+    return set()
+
+
+def default_workers() -> int:
+    """Workers of the default local cluster: one per CPU core (processes, one thread each)."""
+    return max(1, os.cpu_count() or 1)
+
+
+def run_sweep(
+    spec: SweepSpec,
+    path: str | Path,
+    *,
+    chunk_function: ChunkFunction | None = None,
+    scheduler: str | None = None,
+    workers: int | None = None,
+    client: Any = None,
+    retries: int = 2,
+    on_progress: ProgressCallback | None = None,
+) -> SweepRun:
+    """Compute the chunks of ``spec`` that are missing from the Zarr store at ``path``.
+
+    A new store is created; an existing one must hold the same sweep (else :class:`InputError`)
+    and only its chunks without completion marker are computed. Interrupting this function at any
+    point (Ctrl-C, SIGKILL) loses at most the chunks in flight.
+
+    Args:
+        spec: the sweep.
+        path: the Zarr store (directory).
+        chunk_function: computes one chunk; default :func:`skisnow.sweep.contact_chunk` (loaded
+            profile + contact solve per mass, warm-started along the masses).
+        scheduler: address of an existing ``dask.distributed`` scheduler (``tcp://host:8786``).
+            Default: a new :class:`dask.distributed.LocalCluster` of ``workers`` processes.
+        workers: workers of the local cluster (default :func:`default_workers`); ``0`` computes
+            in this process without Dask (for small grids and debugging).
+        client: an existing ``distributed.Client`` to use (overrides ``scheduler``/``workers``).
+        retries: Dask retries of a chunk whose worker failed.
+        on_progress: called after each chunk is written.
+    """
+    if chunk_function is None:
+        from skisnow.sweep._point import contact_chunk
+
+        chunk_function = contact_chunk
+    if workers is not None and workers < 0:
+        raise InputError(f"workers: need >= 0, got {workers}")
+    if retries < 0:
+        raise InputError(f"retries: need >= 0, got {retries}")
+    t0 = time.perf_counter()
+    path = Path(path)
+    done = prepare_store(path, spec, chunk_function)
+    todo = [key for key in spec.chunks() if key not in done]
+    skipped = tuple(key for key in spec.chunks() if key in done)
+    computed: list[tuple[int, int, int]] = []
+
+    def _record(key: tuple[int, int, int], values: Mapping[str, np.ndarray]) -> None:
+        write_chunk(path, spec, key, values)
+        computed.append(key)
+        if on_progress is not None:
+            on_progress(len(computed), len(todo), key)
+
+    if not todo:
+        wall = time.perf_counter() - t0
+        return SweepRun(
+            path=path, spec=spec, computed=(), skipped=skipped, wall_time=wall,
+            compute_time=0.0, workers=0,
+        )  # fmt: skip
+
+    if client is None and scheduler is None and workers == 0:
+        t1 = time.perf_counter()
+        for key in todo:
+            _record(*_chunk_task(chunk_function, spec, key))
+        end = time.perf_counter()
+        return SweepRun(
+            path=path, spec=spec, computed=tuple(computed), skipped=skipped,
+            wall_time=end - t0, compute_time=end - t1, workers=0,
+        )  # fmt: skip
+
+    own_client, own_cluster = None, None
+    try:
+        if client is None:
+            from distributed import Client
+
+            if scheduler is not None:
+                own_client = Client(scheduler)
+            else:
+                from distributed import LocalCluster
+
+                n = default_workers() if workers is None else workers
+                own_cluster = LocalCluster(
+                    n_workers=n,
+                    threads_per_worker=1,
+                    processes=True,
+                    dashboard_address=None,
+                    silence_logs=40,  # logging.ERROR
+                )
+                own_client = Client(own_cluster)
+            client = own_client
+        n_workers = len(client.scheduler_info(n_workers=-1).get("workers", {}))
+        t1 = time.perf_counter()
+        futures = [
+            client.submit(
+                _chunk_task,
+                chunk_function,
+                spec,
+                key,
+                key=f"skisnow-chunk-{path.name}-{key[0]}-{key[1]}-{key[2]}-{time.time_ns()}",
+                retries=retries,
+                pure=False,
+            )
+            for key in todo
+        ]
+        from distributed import as_completed
+
+        try:
+            for future in as_completed(futures):
+                try:
+                    key, values = future.result()
+                except SkisnowError:
+                    raise
+                except Exception as exc:
+                    raise SkisnowError(
+                        f"a sweep chunk failed after {retries} retries: {type(exc).__name__}: "
+                        f"{exc} (finished chunks are kept in {path}; re-run to resume)"
+                    ) from exc
+                _record(key, values)
+        finally:
+            for future in futures:
+                future.cancel()
+        end = time.perf_counter()
+        return SweepRun(
+            path=path, spec=spec, computed=tuple(computed), skipped=skipped,
+            wall_time=end - t0, compute_time=end - t1, workers=n_workers,
+        )  # fmt: skip
+    finally:
+        if own_client is not None:
+            own_client.close()
+        if own_cluster is not None:
+            own_cluster.close()

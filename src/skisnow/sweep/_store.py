@@ -1,0 +1,263 @@
+"""The Zarr store of a sweep: its layout, chunk-by-chunk writes, completion markers, resuming.
+
+Layout (Zarr format 2 — its string coordinates are part of the specification, unlike format 3's
+in zarr-python 3.x, which warns):
+
+* coordinates ``ski``, ``mass_kg``, ``load_position_mm``, ``snow_modulus_mpa``, ``zone`` (field
+  units, as the dimension names say);
+* per zone and point: ``length_mm``, ``area_cm2``, ``mean_pressure_kpa``, ``max_pressure_kpa``,
+  ``load_share``, ``patches``;
+* per zone, independent of the snow (a property of the profile alone): ``breitschaedel_length_mm``,
+  ``breitschaedel_area_cm2`` (the 50 µm criterion of Kalliorinne et al. 2023, §4);
+* per point: ``iterations``, ``residual``, ``converged``;
+* per chunk: ``chunk_done`` (int8, 1 = the chunk's data are completely written). It is the
+  completion marker: written *after* the chunk's data, as its own uncompressed one-byte Zarr chunk,
+  so a process killed at any instant leaves either a complete chunk with its marker, or a chunk
+  without its marker (recomputed on resume). Never a marker without its data.
+
+The store is created from a template with ``Dataset.to_zarr(compute=False)`` (metadata and
+coordinates only); each chunk is then written with ``to_zarr(region=...)``. The Zarr chunking
+equals the task chunking (one ski × one position × one modulus × all masses), so no two tasks
+ever touch the same Zarr chunk.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from skisnow._errors import FileFormatError, InputError
+from skisnow.sweep._grid import SweepSpec
+
+DIMS = ("ski", "mass_kg", "load_position_mm", "snow_modulus_mpa", "zone")
+POINT_DIMS = DIMS[:4]
+PROFILE_DIMS = ("ski", "mass_kg", "load_position_mm", "zone")
+CHUNK_DIMS = ("ski", "load_position_mm", "snow_modulus_mpa")
+
+#: The attribute that holds the sweep's inputs (canonical JSON of :class:`SweepSpec`).
+SPEC_ATTR = "skisnow_sweep_spec"
+
+
+@dataclass(frozen=True)
+class _Var:
+    dims: tuple[str, ...]
+    dtype: str
+    units: str
+    long_name: str
+
+
+#: Every variable a chunk function must return, with its dims (a chunk's arrays have the shape of
+#: the dims minus ski/load_position_mm/snow_modulus_mpa: (n_mass, n_zone) or (n_mass,)).
+VARIABLES: dict[str, _Var] = {
+    "length_mm": _Var(DIMS, "float64", "mm", "apparent contact length of the zone"),
+    "area_cm2": _Var(DIMS, "float64", "cm2", "apparent contact area of the zone"),
+    "mean_pressure_kpa": _Var(DIMS, "float64", "kPa", "mean apparent pressure over the zone"),
+    "max_pressure_kpa": _Var(DIMS, "float64", "kPa", "maximum apparent pressure in the zone"),
+    "load_share": _Var(DIMS, "float64", "1", "fraction of the load m·g carried by the zone"),
+    "patches": _Var(DIMS, "int32", "1", "number of separate contact patches in the zone"),
+    "breitschaedel_length_mm": _Var(
+        PROFILE_DIMS, "float64", "mm", "length where the loaded camber height is below 50 µm"
+    ),
+    "breitschaedel_area_cm2": _Var(
+        PROFILE_DIMS, "float64", "cm2", "area where the loaded camber height is below 50 µm"
+    ),
+    "iterations": _Var(POINT_DIMS, "int32", "1", "iterations of the contact solver"),
+    "residual": _Var(POINT_DIMS, "float64", "1", "final residual of the contact solver"),
+    "converged": _Var(POINT_DIMS, "bool", "1", "the contact solver reached its tolerance"),
+}
+
+
+def _coords(spec: SweepSpec) -> dict[str, Any]:
+    return {
+        "ski": np.array(spec.skis, dtype=str),
+        "mass_kg": np.array(spec.masses, dtype=float),
+        "load_position_mm": np.round(np.array(spec.load_positions, dtype=float) * 1e3, 9),
+        "snow_modulus_mpa": np.round(np.array(spec.snow_moduli, dtype=float) / 1e6, 9),
+        "zone": np.array(spec.zones, dtype=str),
+    }
+
+
+def _fill(dtype: str) -> Any:
+    return {"float64": np.nan, "int32": 0, "bool": False, "int8": 0}[dtype]
+
+
+def template(spec: SweepSpec, *, attrs: Mapping[str, Any]) -> Any:
+    """The lazy (Dask-backed) full dataset of a sweep, chunked as the tasks are."""
+    import dask.array as da
+    import xarray as xr
+
+    coords = _coords(spec)
+    sizes = {d: len(v) for d, v in coords.items()}
+    task_chunk = {
+        "ski": 1,
+        "mass_kg": sizes["mass_kg"],
+        "load_position_mm": 1,
+        "snow_modulus_mpa": 1,
+        "zone": sizes["zone"],
+    }
+    data_vars = {}
+    for name, var in VARIABLES.items():
+        shape = tuple(sizes[d] for d in var.dims)
+        chunks = tuple(task_chunk[d] for d in var.dims)
+        arr = da.full(shape, _fill(var.dtype), dtype=var.dtype, chunks=chunks)
+        data_vars[name] = (var.dims, arr, {"units": var.units, "long_name": var.long_name})
+    shape = tuple(sizes[d] for d in CHUNK_DIMS)
+    data_vars["chunk_done"] = (
+        CHUNK_DIMS,
+        da.zeros(shape, dtype="int8", chunks=(1,) * len(CHUNK_DIMS)),
+        {"long_name": "1 when the chunk's data are completely written (completion marker)"},
+    )
+    ds = xr.Dataset(data_vars, coords=coords, attrs=dict(attrs))
+    ds["mass_kg"].attrs.update(units="kg", long_name="loaded mass m (load m·g)")
+    ds["load_position_mm"].attrs.update(
+        units="mm", long_name="load position x_m from the balance point, + toward the tip"
+    )
+    ds["snow_modulus_mpa"].attrs.update(units="MPa", long_name="elastic modulus of the snow")
+    return ds
+
+
+def _encoding() -> dict[str, dict[str, Any]]:
+    enc: dict[str, dict[str, Any]] = {}
+    for name, var in VARIABLES.items():
+        if var.dtype != "float64":
+            # No _FillValue: integers and booleans stay integers and booleans when read back.
+            enc[name] = {"_FillValue": None}
+    # The marker is one uncompressed byte per Zarr chunk: written whole or not at all.
+    enc["chunk_done"] = {"_FillValue": None, "compressors": None}
+    return enc
+
+
+def create_store(path: Path, spec: SweepSpec, *, attrs: Mapping[str, Any]) -> None:
+    """Create the store: metadata and coordinates only (``to_zarr(compute=False)``)."""
+    ds = template(spec, attrs=attrs)
+    ds.to_zarr(
+        path, mode="w-", compute=False, encoding=_encoding(), consolidated=False, zarr_format=2
+    )
+
+
+def read_spec(path: Path) -> SweepSpec:
+    """The :class:`SweepSpec` stored in a sweep's Zarr store."""
+    import zarr
+
+    try:
+        group = zarr.open_group(str(path), mode="r")
+        text = group.attrs[SPEC_ATTR]
+    except (FileNotFoundError, KeyError, ValueError) as exc:
+        raise FileFormatError(
+            f"{path}: not a skisnow sweep store (no readable '{SPEC_ATTR}' attribute: {exc})"
+        ) from None
+    return SweepSpec.from_json(str(text))
+
+
+def check_same_sweep(path: Path, spec: SweepSpec, stored_attrs: Mapping[str, Any]) -> None:
+    """Raise :class:`InputError` if the store at ``path`` holds a different sweep than ``spec``."""
+    stored = read_spec(path)
+    if stored.to_json() == spec.to_json():
+        return
+    a, b = stored.__dict__, spec.__dict__
+    diffs = [k for k in a if a[k] != b[k]]
+    raise InputError(
+        f"{path} already holds a different sweep (differs in: {', '.join(diffs)}); "
+        "resuming needs exactly the same grid and options. Use another --out, or delete the "
+        "store to start afresh."
+    )
+
+
+def done_chunks(path: Path, spec: SweepSpec) -> set[tuple[int, int, int]]:
+    """Chunk keys whose completion marker is set.
+
+    Read marker by marker: a marker file torn by a kill (empty or unreadable) counts as not done.
+    """
+    import zarr
+
+    arr = zarr.open_array(str(path), path="chunk_done", mode="r")
+    try:
+        flags = np.asarray(arr[...])
+    except Exception:  # a torn one-byte marker: read them one by one
+        flags = np.zeros(arr.shape, dtype="int8")
+        for key in spec.chunks():
+            try:
+                flags[key] = arr[key]
+            except Exception:
+                flags[key] = 0
+    return {key for key in spec.chunks() if flags[key] == 1}
+
+
+def write_chunk(
+    path: Path, spec: SweepSpec, key: tuple[int, int, int], values: Mapping[str, np.ndarray]
+) -> None:
+    """Write one chunk's data with ``to_zarr(region=...)``, THEN its completion marker."""
+    import xarray as xr
+
+    i, j, k = key
+    n_mass, n_zone = len(spec.masses), len(spec.zones)
+    region = {
+        "ski": slice(i, i + 1),
+        "mass_kg": slice(0, n_mass),
+        "load_position_mm": slice(j, j + 1),
+        "snow_modulus_mpa": slice(k, k + 1),
+        "zone": slice(0, n_zone),
+    }
+    full: dict[str, Any] = {}
+    profile: dict[str, Any] = {}
+    for name, var in VARIABLES.items():
+        if name not in values:
+            raise InputError(f"chunk function returned no {name!r} (needs {sorted(VARIABLES)})")
+        want = (n_mass, n_zone) if "zone" in var.dims else (n_mass,)
+        arr = np.asarray(values[name]).astype(var.dtype)
+        if arr.shape != want:
+            raise InputError(f"chunk function returned {name!r} of shape {arr.shape}, need {want}")
+        # insert the singleton ski/position/modulus axes in dims order
+        sizes = {"mass_kg": n_mass, "zone": n_zone}
+        expanded = arr.reshape(tuple(sizes.get(d, 1) for d in var.dims))
+        (profile if "snow_modulus_mpa" not in var.dims else full)[name] = (var.dims, expanded)
+    # One region write for all variables. The profile-only variables (no snow_modulus_mpa dim)
+    # are the same for every modulus of this (ski, position): rewriting them from each chunk is
+    # idempotent and keeps every chunk self-contained.
+    xr.Dataset({**full, **profile}).to_zarr(path, region=region, consolidated=False)
+    marker = np.ones((1, 1, 1), dtype="int8")
+    xr.Dataset({"chunk_done": (CHUNK_DIMS, marker)}).to_zarr(
+        path, region={d: region[d] for d in CHUNK_DIMS}, consolidated=False
+    )
+
+
+def open_sweep(path: str | Path, *, require_complete: bool = True) -> Any:
+    """Open a sweep's Zarr store as an in-memory :class:`xarray.Dataset`.
+
+    With ``require_complete`` (default) a store with missing chunks raises :class:`InputError`
+    saying how many are missing and that re-running the same ``skisnow sweep`` completes it.
+    """
+    import xarray as xr
+
+    path = Path(path)
+    spec = read_spec(path)
+    ds = xr.open_zarr(path, consolidated=False).load()
+    if require_complete:
+        missing = int((ds["chunk_done"].values != 1).sum())
+        if missing:
+            raise InputError(
+                f"{path}: {missing} of {ds['chunk_done'].size} chunks are not computed yet; run "
+                "the same sweep again to complete it (finished chunks are kept)"
+            )
+    ds.attrs[SPEC_ATTR] = spec.to_json()
+    return ds
+
+
+def save_netcdf(ds: Any, path: str | Path) -> Path:
+    """Export a (complete) sweep dataset to NetCDF with the first engine available.
+
+    The primary format is Zarr; NetCDF is an export. Engines tried: netCDF4, h5netcdf, scipy
+    (NetCDF-3; booleans become int8 with a ``dtype`` attribute, as xarray encodes them).
+    """
+    import importlib.util
+
+    path = Path(path)
+    for engine, module in (("netcdf4", "netCDF4"), ("h5netcdf", "h5netcdf"), ("scipy", "scipy")):
+        if importlib.util.find_spec(module) is not None:
+            ds.to_netcdf(path, engine=engine)
+            return path
+    raise InputError("no NetCDF engine is installed (netCDF4, h5netcdf or scipy); use Zarr")
