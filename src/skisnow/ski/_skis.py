@@ -1,0 +1,302 @@
+"""Virtual skis: the :class:`Ski` description and the two shipped skis ``classic`` and ``skate``.
+
+A ski is described along its running surface by the coordinate x [m], with x = 0 at the balance
+point and x > 0 toward the tip (seed paper 000, Kalliorinne et al. 2023, §3.1 and Fig. 2). It
+carries two functions of x, both stored as tabulated points and interpolated with the
+shape-preserving monotone cubic (PCHIP) so that no overshoot invents bumps between points:
+
+* ``stiffness(x)`` — the bending stiffness EI(x) [N m²] (interpolated in log EI);
+* ``free_camber(x)`` — the unloaded base profile z0(x) [m]: the height of the base above the flat
+  plane on which the unloaded ski rests, ignoring its own weight. It is >= 0 and touches 0 at the
+  rear and front contact points of the unloaded ski (the lower convex hull of the profile).
+
+The shipped skis (``classic``, ``skate``) are documented in :func:`get_ski`; their definitions are
+FROZEN (the camber network of issue 4 is trained on bench data from them): changing them would
+silently invalidate the shipped networks.
+"""
+
+from __future__ import annotations
+
+import functools
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Literal
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+from scipy.interpolate import PchipInterpolator
+
+from skisnow._errors import InputError
+
+__all__ = ["SHIPPED_SKIS", "Ski", "get_ski"]
+
+#: Names of the skis shipped with skisnow (see :func:`get_ski`).
+SHIPPED_SKIS: tuple[str, ...] = ("classic", "skate")
+
+
+def _as_float_tuple(values: ArrayLike, name: str) -> tuple[float, ...]:
+    arr = np.asarray(values, dtype=float)
+    if arr.ndim != 1:
+        raise InputError(f"Ski: {name} must be one-dimensional, got shape {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise InputError(f"Ski: {name} contains NaN or inf")
+    return tuple(float(v) for v in arr)
+
+
+@dataclass(frozen=True, kw_only=True)
+class Ski:
+    """A ski as a beam: geometry, bending stiffness EI(x) and free camber z0(x). SI units.
+
+    Attributes:
+        name: identifier (``'classic'``, ``'skate'`` or a user's name).
+        kind: ``'classic'`` (with a kick-wax zone) or ``'skate'``.
+        x_tail, x_tip: ends of the running surface [m] from the balance point (x_tail < 0 < x_tip).
+        width: base width [m] (used by the contact area computations downstream).
+        stiffness_x, stiffness_values: tabulated EI(x) [m], [N m²] covering [x_tail, x_tip].
+        camber_x, camber_values: tabulated z0(x) [m], [m] covering [x_tail, x_tip].
+        kick_zone: (start, end) [m] of the kick-wax zone for classic skis, ``None`` for skate.
+        description: where the numbers come from (citations) — free text.
+    """
+
+    name: str
+    kind: Literal["classic", "skate"]
+    x_tail: float
+    x_tip: float
+    width: float
+    stiffness_x: tuple[float, ...]
+    stiffness_values: tuple[float, ...]
+    camber_x: tuple[float, ...]
+    camber_values: tuple[float, ...]
+    kick_zone: tuple[float, float] | None = None
+    description: str = field(default="", compare=False)
+
+    def __post_init__(self) -> None:
+        for name in ("stiffness_x", "stiffness_values", "camber_x", "camber_values"):
+            object.__setattr__(self, name, _as_float_tuple(getattr(self, name), name))
+        if self.kind not in ("classic", "skate"):
+            raise InputError(
+                f"Ski {self.name!r}: kind must be 'classic' or 'skate', not {self.kind!r}"
+            )
+        if not (np.isfinite(self.x_tail) and np.isfinite(self.x_tip)):
+            raise InputError(f"Ski {self.name!r}: x_tail and x_tip must be finite")
+        if not (self.x_tail < 0.0 < self.x_tip):
+            raise InputError(
+                f"Ski {self.name!r}: need x_tail < 0 < x_tip (balance point inside the ski), "
+                f"got x_tail={self.x_tail} m, x_tip={self.x_tip} m"
+            )
+        if not (np.isfinite(self.width) and self.width > 0):
+            raise InputError(f"Ski {self.name!r}: width must be > 0 m, got {self.width}")
+        for kx, kv, what in (
+            (self.stiffness_x, self.stiffness_values, "stiffness"),
+            (self.camber_x, self.camber_values, "camber"),
+        ):
+            if len(kx) != len(kv) or len(kx) < 2:
+                raise InputError(
+                    f"Ski {self.name!r}: {what}_x and {what}_values need the same length >= 2, "
+                    f"got {len(kx)} and {len(kv)}"
+                )
+            if np.any(np.diff(kx) <= 0):
+                raise InputError(f"Ski {self.name!r}: {what}_x must be strictly increasing")
+            tol = 1e-9
+            if kx[0] > self.x_tail + tol or kx[-1] < self.x_tip - tol:
+                raise InputError(
+                    f"Ski {self.name!r}: {what}_x must cover [x_tail, x_tip] = "
+                    f"[{self.x_tail}, {self.x_tip}] m, covers [{kx[0]}, {kx[-1]}] m"
+                )
+        if min(self.stiffness_values) <= 0:
+            raise InputError(f"Ski {self.name!r}: stiffness values EI must be > 0 N m²")
+        if self.kick_zone is not None:
+            a, b = (float(v) for v in self.kick_zone)
+            if not (self.x_tail <= a < b <= self.x_tip):
+                raise InputError(
+                    f"Ski {self.name!r}: kick_zone must satisfy x_tail <= start < end <= x_tip, "
+                    f"got {self.kick_zone}"
+                )
+            object.__setattr__(self, "kick_zone", (a, b))
+
+    @property
+    def length(self) -> float:
+        """Length of the running surface [m] (x_tip - x_tail)."""
+        return self.x_tip - self.x_tail
+
+    def _check_x(self, x: ArrayLike) -> NDArray[np.float64]:
+        xa = np.asarray(x, dtype=float)
+        tol = 1e-9
+        outside = (xa < self.x_tail - tol) | (xa > self.x_tip + tol)
+        if np.any(~np.isfinite(xa)) or np.any(outside):
+            raise InputError(
+                f"Ski {self.name!r}: x must lie on the ski, in [{self.x_tail}, {self.x_tip}] m"
+            )
+        return xa
+
+    def stiffness(self, x: ArrayLike) -> NDArray[np.float64]:
+        """Bending stiffness EI(x) [N m²] at positions x [m] (PCHIP in log EI)."""
+        return np.exp(_interpolants(self)[0](self._check_x(x)))
+
+    def free_camber(self, x: ArrayLike) -> NDArray[np.float64]:
+        """Free (unloaded) base height z0(x) [m] above the plane the unloaded ski rests on."""
+        return _interpolants(self)[1](self._check_x(x))
+
+
+@functools.lru_cache(maxsize=64)
+def _interpolants(ski: Ski) -> tuple[Callable, Callable]:
+    log_ei = PchipInterpolator(np.array(ski.stiffness_x), np.log(np.array(ski.stiffness_values)))
+    z0 = PchipInterpolator(np.array(ski.camber_x), np.array(ski.camber_values))
+    return log_ei, z0
+
+
+def get_ski(name: str) -> Ski:
+    """Return the shipped virtual ski ``name`` (one of :data:`SHIPPED_SKIS`).
+
+    Raises:
+        InputError: if ``name`` is not a shipped ski (the message lists the valid names).
+    """
+    if name not in SHIPPED_SKIS:
+        raise InputError(f"unknown ski {name!r}; shipped skis are: {', '.join(SHIPPED_SKIS)}")
+    return _SHIPPED_BUILDERS[name]()
+
+
+# --------------------------------------------------------------------------- shipped skis
+#
+# FROZEN on 2026-11-21 (issue 2): the camber network (issue 4) is trained on bench data of these
+# definitions. Do not change a number here without retraining and re-shipping the networks.
+
+
+def _bump(x: NDArray[np.float64], start: float, end: float, power: float) -> NDArray[np.float64]:
+    """(1 - u²)^power on [start, end] (u in [-1, 1]), zero outside: a smooth compact arch."""
+    c, w = 0.5 * (start + end), 0.5 * (end - start)
+    u = (x - c) / w
+    return np.where(np.abs(u) < 1.0, np.abs(1.0 - u**2) ** power, 0.0)
+
+
+def _rest_on_plane(x: NDArray[np.float64], z: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Subtract the lower-hull line under the balance point: the unloaded ski on the plane."""
+    hull: list[int] = []
+    for i in range(x.size):
+        while len(hull) >= 2:
+            i0, i1 = hull[-2], hull[-1]
+            if (x[i1] - x[i0]) * (z[i] - z[i0]) - (z[i1] - z[i0]) * (x[i] - x[i0]) <= 0.0:
+                hull.pop()
+            else:
+                break
+        hull.append(i)
+    hx = x[hull]
+    k = int(np.clip(np.searchsorted(hx, 0.0, side="right") - 1, 0, len(hull) - 2))
+    i, j = hull[k], hull[k + 1]
+    return z - (z[i] + (z[j] - z[i]) * (x - x[i]) / (x[j] - x[i]))
+
+
+def _build(
+    *,
+    name: str,
+    kind: Literal["classic", "skate"],
+    x_tail: float,
+    x_tip: float,
+    camber: float,
+    camber_span: tuple[float, float],
+    pocket: float,
+    pocket_span: tuple[float, float] | None,
+    hump: tuple[float, float, float] | None,
+    ei_mid: float,
+    ei_end: float,
+    kick_zone: tuple[float, float] | None,
+    description: str,
+) -> Ski:
+    x = np.round(np.linspace(x_tail, x_tip, round((x_tip - x_tail) / 0.005) + 1), 6)
+    z = camber * _bump(x, *camber_span, 2)
+    if pocket_span is not None:
+        z = z + pocket * _bump(x, *pocket_span, 2)
+    if hump is not None:
+        z = z + hump[0] * _bump(x, hump[1], hump[2], 2)
+    shovel, tail = 0.20, 0.05  # lengths [m] of the tip (shovel) and tail rises
+    z = z + 30e-3 * np.clip((x - (x_tip - shovel)) / shovel, 0.0, 1.0) ** 2.5
+    z = z + 4e-3 * np.clip(((x_tail + tail) - x) / tail, 0.0, 1.0) ** 2
+    ex = np.round(np.linspace(x_tail, x_tip, round((x_tip - x_tail) / 0.02) + 1), 6)
+    ei = ei_end + (ei_mid - ei_end) * _bump(ex, -1.0, 1.0, 2) ** 0.5
+    return Ski(
+        name=name,
+        kind=kind,
+        x_tail=x_tail,
+        x_tip=x_tip,
+        width=0.044,
+        stiffness_x=ex,
+        stiffness_values=ei,
+        camber_x=x,
+        camber_values=_rest_on_plane(x, z),
+        kick_zone=kick_zone,
+        description=description,
+    )
+
+
+_SOURCES = """\
+Sources: Kalliorinne et al. 2023 (seed paper 000, §3.1, Fig. 2 and 4): SkiSelector bench, load
+sequence, short contact patches on the stone; Breitschädel, F., "Variation of Nordic classic ski
+characteristics from Norwegian national team athletes", Procedia Eng. 34 (2012) 391-396 (camber
+height at the balance point, stiffness, contact zones, classic skis) and "Variation of cross
+country ski characteristics" (SPORTNET record 3047843; skating skis: stiffness k = Δload/Δcamber
+between 0.5 and 1 body weight 225-251 N/mm, net contact about half the ski length); the
+practitioners' note "Classic ski pressure distribution & wax pocket" (half body weight 80 mm behind
+the balance point; hard-wax pocket 0.3-0.7 mm high; wax from the 0.2 mm mark at the rear to the
+0.1 mm mark in front); J. Galanes, "Defining the wax pocket", New England Nordic News 1996 (pocket
+45-55 cm, from the heel plate to 20-30 cm in front of the binding)."""
+
+
+@functools.cache
+def _classic() -> Ski:
+    return _build(
+        name="classic",
+        kind="classic",
+        x_tail=-0.98,
+        x_tip=1.02,
+        camber=6.5e-3,
+        camber_span=(-0.86, 0.82),
+        pocket=0.9e-3,
+        pocket_span=(-0.40, 0.46),
+        hump=None,
+        ei_mid=1450.0,
+        ei_end=120.0,
+        kick_zone=(-0.25, 0.38),
+        description=(
+            "Virtual classic ski, 2.00 m running surface (tail -980 mm, tip +1020 mm from the "
+            "balance point), 44 mm wide. Double camber: a 6.5 mm first camber between the glide "
+            "zones and a 0.9 mm kick-wax pocket (-400..+460 mm) on top; 30 mm shovel rise over "
+            "the last 200 mm, 4 mm tail rise over the last 50 mm. EI(x) = 120 N m² at the ends "
+            "rising to 1450 N m² at the balance point. CHOSEN, not measured: no public EI(x) of a "
+            "XC ski was found; EI and the camber heights were fitted so that the practitioners' "
+            "numbers hold on the virtual bench (half of 65 kg at -80 mm: pocket 0.72 mm high; "
+            "closes (< 0.1 mm) at about 60 kg; at -70 mm and 60 kg the pocket carries load). "
+            "Kick zone (-250, +380) mm: the 0.2 mm rear / 0.1 mm front marks at half of 65 kg "
+            "placed 80 mm behind the balance point.\n" + _SOURCES
+        ),
+    )
+
+
+@functools.cache
+def _skate() -> Ski:
+    return _build(
+        name="skate",
+        kind="skate",
+        x_tail=-0.92,
+        x_tip=0.94,
+        camber=5.5e-3,
+        camber_span=(-0.80, 0.76),
+        pocket=0.0,
+        pocket_span=None,
+        hump=(0.4e-3, 0.52, 0.68),
+        ei_mid=8000.0,
+        ei_end=200.0,
+        kick_zone=None,
+        description=(
+            "Virtual skate ski, 1.86 m running surface (tail -920 mm, tip +940 mm), 44 mm wide. "
+            "Single 5.5 mm camber, no kick zone, 30 mm shovel and 4 mm tail rise, and a 0.4 mm "
+            "hump in the front glide zone (+520..+680 mm) so that the front contact splits into "
+            "two patches as the load rises (seed paper 000, Fig. 5). EI(x) = 200 N m² at the "
+            "ends rising to 8000 N m²: much stiffer than the classic ski. CHOSEN, not measured: "
+            "fitted so that Breitschädel's stiffness between half and full body weight (65 kg, "
+            "-80 mm) is about 210 N/mm, in the measured range of skating skis, and the ski does "
+            "not close within the bench range.\n" + _SOURCES
+        ),
+    )
+
+
+_SHIPPED_BUILDERS: dict[str, Callable[[], Ski]] = {"classic": _classic, "skate": _skate}
