@@ -1,0 +1,159 @@
+"""Analytic reference solutions of frictionless normal contact (Johnson 1985, ch. 2–5).
+
+All take the **paper's equivalent modulus** E' of eq. 2 as ``modulus`` (E' = 2·E*, with E* the
+Hertz/Johnson contact modulus), so that they can be compared with
+:func:`~skisnow.contact.solve_contact` without conversion. Each is checked on its own by
+quadrature and equilibrium in ``tests/contact/test_reference.py``.
+
+* :func:`hertz_line` — a cylinder (radius R) on a half-space, plane strain, load per length W'.
+* :func:`hertz_sphere` — a sphere (radius R) on a half-space, load W.
+* :func:`flat_punch` — a rigid flat punch of half-width a in plane strain, load per length W'
+  at eccentricity e (full contact while |e| < a/2):
+  p(x) = W'/(π √(a² − x²)) · (1 + 2 e x / a²), tilt θ = 8 W' e/(π E' a²).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike
+
+from skisnow._errors import InputError
+
+__all__ = ["FlatPunch", "HertzLine", "HertzSphere", "flat_punch", "hertz_line", "hertz_sphere"]
+
+
+def _pos(name: str, v: float) -> float:
+    v = float(v)
+    if not np.isfinite(v) or v <= 0:
+        raise InputError(f"{name} must be finite and positive, got {v!r}")
+    return v
+
+
+@dataclass(frozen=True, kw_only=True)
+class HertzLine:
+    """Hertz line contact: half-width a [m], peak p₀ [Pa], load per length W' [N/m]."""
+
+    load_per_length: float
+    radius: float
+    modulus: float
+    half_width: float
+    max_pressure: float
+
+    def pressure(self, x: ArrayLike) -> np.ndarray:
+        """p(x) = p₀ √(1 − x²/a²) [Pa] (0 outside |x| < a)."""
+        s = 1.0 - (np.asarray(x, dtype=float) / self.half_width) ** 2
+        return self.max_pressure * np.sqrt(np.clip(s, 0.0, None))
+
+
+def hertz_line(load_per_length: float, radius: float, *, modulus: float) -> HertzLine:
+    """Cylinder on a half-space (plane strain): a = √(8 W' R/(π E')), p₀ = 2 W'/(π a).
+
+    (Johnson eq. 4.45–4.46 with E* = E'/2.)
+    """
+    w, r, e = (
+        _pos("load_per_length", load_per_length),
+        _pos("radius", radius),
+        _pos("modulus", modulus),
+    )
+    a = np.sqrt(8.0 * w * r / (np.pi * e))
+    return HertzLine(
+        load_per_length=w,
+        radius=r,
+        modulus=e,
+        half_width=float(a),
+        max_pressure=2 * w / (np.pi * a),
+    )
+
+
+@dataclass(frozen=True, kw_only=True)
+class HertzSphere:
+    """Hertz point contact: radius a [m], peak p₀ [Pa], approach δ [m]."""
+
+    load: float
+    radius: float
+    modulus: float
+    contact_radius: float
+    max_pressure: float
+    approach: float
+
+    def pressure(self, r: ArrayLike) -> np.ndarray:
+        """p(r) = p₀ √(1 − r²/a²) [Pa] (0 outside r < a)."""
+        s = 1.0 - (np.asarray(r, dtype=float) / self.contact_radius) ** 2
+        return self.max_pressure * np.sqrt(np.clip(s, 0.0, None))
+
+
+def hertz_sphere(load: float, radius: float, *, modulus: float) -> HertzSphere:
+    """Sphere on a half-space: a = (3 W R/(4 E*))^(1/3) with E* = E'/2; p₀ = 3W/(2πa²); δ = a²/R.
+
+    (Johnson eq. 4.22–4.23.)
+    """
+    w, r, e = _pos("load", load), _pos("radius", radius), _pos("modulus", modulus)
+    a = (3.0 * w * r / (4.0 * (e / 2.0))) ** (1.0 / 3.0)
+    return HertzSphere(
+        load=w,
+        radius=r,
+        modulus=e,
+        contact_radius=float(a),
+        max_pressure=float(3 * w / (2 * np.pi * a * a)),
+        approach=float(a * a / r),
+    )
+
+
+@dataclass(frozen=True, kw_only=True)
+class FlatPunch:
+    """Rigid flat punch of half-width a in plane strain, load W' at eccentricity e."""
+
+    load_per_length: float
+    half_width: float
+    eccentricity: float
+    modulus: float
+
+    @property
+    def rotation(self) -> float:
+        """Tilt θ = 8 W' e/(π E' a²) [rad] (positive: the side x > 0 goes down)."""
+        return (
+            8.0
+            * self.load_per_length
+            * self.eccentricity
+            / (np.pi * self.modulus * self.half_width**2)
+        )
+
+    def pressure(self, x: ArrayLike) -> np.ndarray:
+        """p(x) = W'/(π √(a² − x²))·(1 + 2 e x/a²) [Pa] for |x| < a, 0 outside."""
+        x = np.asarray(x, dtype=float)
+        a = self.half_width
+        inside = np.abs(x) < a
+        root = np.sqrt(np.where(inside, a * a - x * x, 1.0))
+        p = self.load_per_length / (np.pi * root) * (1.0 + 2.0 * self.eccentricity * x / a**2)
+        return np.where(inside, p, 0.0)
+
+    def cell_average(self, edges: ArrayLike) -> np.ndarray:
+        """Mean pressure over cells [edges[i], edges[i+1]] (exact integral, for BEM comparison).
+
+        ∫ p dx = (W'/π)·[asin(x/a) − (2e/a²)·√(a² − x²)].
+        """
+        e = np.clip(np.asarray(edges, dtype=float), -self.half_width, self.half_width)
+        a = self.half_width
+        prim = (self.load_per_length / np.pi) * (
+            np.arcsin(e / a)
+            - 2 * self.eccentricity / a**2 * np.sqrt(np.clip(a * a - e * e, 0, None))
+        )
+        return np.diff(prim) / np.diff(np.asarray(edges, dtype=float))
+
+
+def flat_punch(
+    load_per_length: float, half_width: float, *, modulus: float, eccentricity: float = 0.0
+) -> FlatPunch:
+    """Rigid flat punch in plane strain (Johnson §2.8), centred or eccentric (|e| < a/2)."""
+    w, a = _pos("load_per_length", load_per_length), _pos("half_width", half_width)
+    e = float(eccentricity)
+    if not abs(e) < a / 2:
+        raise InputError(
+            f"eccentricity {e:g} m: the punch stays in full contact only while "
+            f"|e| < a/2 = {a / 2:g} m"
+        )
+    return FlatPunch(
+        load_per_length=w, half_width=a, eccentricity=e, modulus=_pos("modulus", modulus)
+    )
