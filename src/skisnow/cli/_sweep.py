@@ -1,1 +1,187 @@
 """Commands for maps over load and snow: sweep, plot, report."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from skisnow.cli._app import app
+from skisnow.cli._render import emit_json, err_console, print_table
+
+
+def _progress(total_label: str):
+    from rich.progress import (
+        BarColumn,
+        MofNCompleteColumn,
+        Progress,
+        TextColumn,
+        TimeElapsedColumn,
+        TimeRemainingColumn,
+    )
+
+    return Progress(
+        TextColumn(total_label),
+        BarColumn(),
+        MofNCompleteColumn(),
+        TimeElapsedColumn(),
+        TimeRemainingColumn(),
+        console=err_console,
+        transient=False,
+    )
+
+
+@app.command()
+def sweep(
+    ski: Annotated[list[str], typer.Option("--ski", help="Ski name (repeat for several).")],
+    out: Annotated[Path, typer.Option("--out", help="Zarr store (resumed if it exists).")],
+    mass_kg: Annotated[
+        str, typer.Option("--mass-kg", help="Masses (kg): start:stop:step, a value or a list.")
+    ] = "5:130:1",
+    load_position_mm: Annotated[
+        str, typer.Option("--load-position-mm", help="Load positions x_m (mm), + toward tip.")
+    ] = "-120",
+    snow_modulus_mpa: Annotated[
+        str, typer.Option("--snow-modulus-mpa", help="Snow moduli E_counter (MPa).")
+    ] = "20:400:20",
+    scheduler: Annotated[
+        str | None,
+        typer.Option(
+            "--scheduler",
+            envvar="SKISNOW_SCHEDULER",
+            help="Address of an existing dask.distributed scheduler (default: a local cluster).",
+        ),
+    ] = None,
+    workers: Annotated[
+        int | None,
+        typer.Option(
+            "--workers", help="Local-cluster workers (default: one per core; 0: no Dask)."
+        ),
+    ] = None,
+    model: Annotated[str, typer.Option("--model", help="Contact model: strip or surface.")] = (
+        "strip"
+    ),
+    profile_source: Annotated[
+        str, typer.Option("--profile-source", help="Loaded profile: network or beam.")
+    ] = "network",
+    n_points: Annotated[int, typer.Option("--n-points", help="Grid points along the ski.")] = 4096,
+    netcdf: Annotated[
+        Path | None, typer.Option("--netcdf", help="Also export the finished sweep to NetCDF.")
+    ] = None,
+    json_out: Annotated[bool, typer.Option("--json", help="Print one JSON document.")] = False,
+) -> None:
+    """Sweep the contact over ski × mass × load position × snow modulus into a Zarr store.
+
+    Interrupted sweeps resume: run the same command again and only missing chunks are computed.
+    """
+    from skisnow.constants import MM, MPA
+    from skisnow.sweep import SweepSpec, open_sweep, parse_values, run_sweep, save_netcdf
+
+    spec = SweepSpec(
+        skis=tuple(ski),
+        masses=parse_values(mass_kg, name="--mass-kg"),
+        load_positions=parse_values(load_position_mm, name="--load-position-mm") * MM,
+        snow_moduli=parse_values(snow_modulus_mpa, name="--snow-modulus-mpa") * MPA,
+        model=model,
+        profile_source=profile_source,
+        n_points=n_points,
+    )
+    n_chunks = len(spec.chunks())
+    with _progress(f"sweep {out.name}") as progress:
+        task = progress.add_task("chunks", total=None)
+
+        def on_progress(done: int, total: int, key: tuple[int, int, int]) -> None:
+            progress.update(task, completed=done, total=total)
+
+        run = run_sweep(spec, out, scheduler=scheduler, workers=workers, on_progress=on_progress)
+        progress.update(task, total=max(len(run.computed), 1), completed=max(len(run.computed), 1))
+    exported = None
+    if netcdf is not None:
+        exported = save_netcdf(open_sweep(out), netcdf)
+    doc = {
+        "store": str(out),
+        "netcdf": None if exported is None else str(exported),
+        "points": spec.n_points_total,
+        "chunks": n_chunks,
+        "computed_chunks": len(run.computed),
+        "skipped_chunks": len(run.skipped),
+        "computed": [list(k) for k in run.computed],
+        "workers": run.workers,
+        "wall_time_s": run.wall_time,
+        "compute_time_s": run.compute_time,
+    }
+    if json_out:
+        emit_json(doc)
+        return
+    rows = [
+        ("store", str(out)),
+        ("contact solves", spec.n_points_total),
+        ("chunks computed / already done", f"{len(run.computed)} / {len(run.skipped)}"),
+        ("workers", run.workers),
+        ("wall time [s]", f"{run.wall_time:.2f}"),
+    ]
+    if exported is not None:
+        rows.append(("NetCDF", str(exported)))
+    print_table("sweep", ["", "value"], rows)
+
+
+@app.command()
+def plot(
+    store: Annotated[Path, typer.Argument(help="A sweep's Zarr store.")],
+    out: Annotated[Path, typer.Option("--out", help="Directory for the figures.")] = Path(
+        "skisnow-figures"
+    ),
+    formats: Annotated[str, typer.Option("--formats", help="Comma-separated formats.")] = (
+        "png,svg"
+    ),
+    json_out: Annotated[bool, typer.Option("--json", help="Print one JSON document.")] = False,
+) -> None:
+    """Draw the maps of a sweep (area, mean pressure, length, load share vs mass per snow)."""
+    from skisnow.plot._maps import plot_sweep
+    from skisnow.sweep import open_sweep
+
+    ds = open_sweep(store)
+    paths = plot_sweep(ds, out, formats=[f.strip() for f in formats.split(",") if f.strip()])
+    if json_out:
+        emit_json({"figures": [str(p) for p in paths]})
+        return
+    print_table(f"figures of {store}", ["file"], [(str(p),) for p in paths])
+
+
+@app.command()
+def report(
+    ski: Annotated[str, typer.Argument(help="Ski name.")],
+    out: Annotated[Path, typer.Option("--out", help="Directory for the report.")] = Path(
+        "skisnow-report"
+    ),
+    body_mass_kg: Annotated[
+        float, typer.Option("--body-mass-kg", help="Skier's body mass (kg).")
+    ] = 60.0,
+    load_position_mm: Annotated[
+        float, typer.Option("--load-position-mm", help="Load position x_m (mm).")
+    ] = -120.0,
+    workers: Annotated[
+        int | None, typer.Option("--workers", help="Dask workers for the maps (0: in process).")
+    ] = 0,
+    scheduler: Annotated[
+        str | None,
+        typer.Option("--scheduler", envvar="SKISNOW_SCHEDULER", help="Existing Dask scheduler."),
+    ] = None,
+    json_out: Annotated[bool, typer.Option("--json", help="Print one JSON document.")] = False,
+) -> None:
+    """Write one self-contained HTML report of a ski (metrics, zones at standard loads, maps)."""
+    from skisnow.report import write_report
+
+    path = write_report(
+        ski,
+        out_dir=out,
+        body_mass=body_mass_kg,
+        load_position=load_position_mm * 1e-3,
+        workers=workers,
+        scheduler=scheduler,
+    )
+    if json_out:
+        emit_json({"report": str(path)})
+        return
+    print_table("report", ["ski", "file"], [(ski, str(path))])

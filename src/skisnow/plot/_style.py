@@ -1,0 +1,139 @@
+"""One consistent look for skisnow's figures (Matplotlib, Agg, no pyplot state).
+
+Colours follow Kalliorinne et al. 2023, Figures 4–9: camber profile blue, apparent pressure red,
+snow surface black, the Breitschädel estimate a thick black line, and snow moduli on a sequential
+colour map (one line per modulus, lighter = softer snow). Figures are :class:`matplotlib.figure.
+Figure` objects created without pyplot, so plotting is thread-safe and never opens a window.
+"""
+
+from __future__ import annotations
+
+import base64
+import io
+from collections.abc import Iterable, Iterator, Sequence
+from contextlib import contextmanager
+from pathlib import Path
+from typing import Any
+
+import matplotlib
+
+matplotlib.use("Agg", force=False)
+
+from matplotlib.figure import Figure
+
+#: Colours of the physical quantities, as in the paper's figures.
+COLORS: dict[str, str] = {
+    "profile": "#1f5fbf",  # camber profile (ANN/beam)
+    "measured": "black",  # measured profile (dashed)
+    "pressure": "#c0392b",  # apparent pressure
+    "snow": "black",  # deformed snow surface
+    "breitschaedel": "black",
+    "load": "#c0392b",  # the load arrow
+}
+#: Colour map of the snow modulus (one line per modulus).
+MODULUS_CMAP = "viridis"
+#: Zone colours for load-share plots.
+ZONE_COLORS: dict[str, str] = {
+    "rear": "#1f5fbf",
+    "middle": "#8e44ad",
+    "front": "#e67e22",
+    "total": "black",
+}
+#: Output formats written by :func:`save_figure` by default.
+FORMATS: tuple[str, ...] = ("png", "svg")
+
+RC: dict[str, Any] = {
+    "font.size": 9.0,
+    "axes.titlesize": 10.0,
+    "axes.labelsize": 9.0,
+    "legend.fontsize": 8.0,
+    "xtick.labelsize": 8.0,
+    "ytick.labelsize": 8.0,
+    "axes.grid": True,
+    "grid.alpha": 0.3,
+    "grid.linewidth": 0.5,
+    "axes.spines.top": False,
+    "axes.spines.right": False,
+    "lines.linewidth": 1.2,
+    "savefig.bbox": "standard",  # constrained layout already fits; "tight" costs a second draw
+    "savefig.dpi": 150,
+    "svg.fonttype": "none",  # text stays text in SVG: small, searchable, crisp in the report
+    "svg.hashsalt": "skisnow",  # deterministic SVG ids
+}
+
+
+@contextmanager
+def style() -> Iterator[None]:
+    """Context in which skisnow's figures are drawn (rcParams of :data:`RC`)."""
+    with matplotlib.rc_context(RC):
+        yield
+
+
+def new_figure(
+    ncols: int = 1, nrows: int = 1, *, width: float = 7.0, height: float = 3.0, **kw: Any
+) -> tuple[Figure, Any]:
+    """A figure (no pyplot) and its axes array, drawn in skisnow's style."""
+    with style():
+        fig = Figure(figsize=(width, height), layout="constrained")
+        axes = fig.subplots(nrows, ncols, squeeze=False, **kw)
+    return fig, axes
+
+
+def modulus_colors(moduli: Sequence[float]) -> list[Any]:
+    """One colour per snow modulus, on :data:`MODULUS_CMAP`, in order of the values."""
+    cmap = matplotlib.colormaps[MODULUS_CMAP]
+    lo, hi = min(moduli), max(moduli)
+    span = hi - lo if hi > lo else 1.0
+    return [cmap(0.05 + 0.9 * (m - lo) / span) for m in moduli]
+
+
+def modulus_colorbar(fig: Figure, axes: Any, moduli: Sequence[float], *, label: str) -> None:
+    """A colour bar for the modulus lines."""
+    import matplotlib.colors as mcolors
+    from matplotlib.cm import ScalarMappable
+
+    lo, hi = min(moduli), max(moduli)
+    pad = 0.05 / 0.9 * (hi - lo) if hi > lo else 1.0
+    norm = mcolors.Normalize(vmin=lo - pad, vmax=hi + pad)
+    sm = ScalarMappable(norm=norm, cmap=MODULUS_CMAP)
+    with style():
+        fig.colorbar(sm, ax=axes, label=label, shrink=0.9)
+
+
+def _metadata(fmt: str) -> dict[str, Any]:
+    # No creation dates: the same data give byte-identical files.
+    if fmt == "svg":
+        return {"Date": None}
+    if fmt == "png":
+        return {"Software": "skisnow (matplotlib)"}
+    return {}
+
+
+def save_figure(fig: Figure, stem: str | Path, *, formats: Iterable[str] = FORMATS) -> list[Path]:
+    """Save ``fig`` as ``stem.png``, ``stem.svg`` (or the given formats); return the paths."""
+    stem = Path(stem)
+    stem.parent.mkdir(parents=True, exist_ok=True)
+    paths = []
+    with style():
+        for fmt in formats:
+            path = stem.with_name(f"{stem.name}.{fmt}")
+            fig.savefig(path, format=fmt, metadata=_metadata(fmt))
+            paths.append(path)
+    return paths
+
+
+def figure_svg(fig: Figure) -> str:
+    """The figure as an SVG document string (for inline embedding in HTML)."""
+    buf = io.StringIO()
+    with style():
+        fig.savefig(buf, format="svg", metadata=_metadata("svg"))
+    text = buf.getvalue()
+    return text[text.index("<svg") :]  # drop the XML prolog and DOCTYPE for inline use
+
+
+def figure_png_base64(fig: Figure, *, dpi: float = 110) -> str:
+    """The figure as a base64 PNG (for ``<img src="data:image/png;base64,...">``)."""
+    buf = io.BytesIO()
+    with style():
+        fig.savefig(buf, format="png", dpi=dpi, metadata=_metadata("png"))
+    return base64.b64encode(buf.getvalue()).decode("ascii")
