@@ -93,6 +93,8 @@ class SweepSpec:
         n_points: grid points along the ski for the profile and the contact solve.
         base_modulus: E_base of the ski base [Pa]; with ``poisson`` it gives E' (eq. 2).
         poisson: Poisson ratio ν of both bodies (eq. 2).
+        tol: tolerance of the contact solver (relative pressure change between iterations);
+            1e-8 resolves areas and pressures far below what a map can show.
     """
 
     skis: tuple[str, ...]
@@ -104,6 +106,7 @@ class SweepSpec:
     n_points: int = 4096
     base_modulus: float = PAPER_BASE_MODULUS
     poisson: float = PAPER_POISSON
+    tol: float = 1e-8
     zones: tuple[str, ...] = field(default=ZONES)
 
     def __post_init__(self) -> None:
@@ -133,6 +136,8 @@ class SweepSpec:
             raise InputError(f"base_modulus: need a finite value > 0 Pa, got {self.base_modulus}")
         if not (-1.0 < self.poisson < 0.5):
             raise InputError(f"poisson: need -1 < ν < 0.5, got {self.poisson}")
+        if not (0 < self.tol < 1):
+            raise InputError(f"tol: need 0 < tol < 1, got {self.tol}")
         object.__setattr__(self, "zones", tuple(self.zones))
 
     # ----------------------------------------------------------------------------------------

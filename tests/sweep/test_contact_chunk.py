@@ -1,0 +1,89 @@
+"""The physics chunk function: profile + contact solve + zones along the load path.
+
+Checks balance laws on the stored (field-unit) values, that warm starts along the masses do not
+change the answer (path independence against cold single solves), the paper's trend that softer
+snow gives a larger apparent area (Figure 7), and that the Breitschädel estimate depends on the
+profile only, not on the snow.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from skisnow.constants import STANDARD_GRAVITY
+from skisnow.sweep import SweepSpec
+from skisnow.sweep._point import contact_chunk, solve_point
+
+SOURCE = "beam"  # the beam is always there; the network source is tested in the CLI test
+
+
+def _spec(**kw) -> SweepSpec:
+    base = dict(
+        skis=("skate", "classic"),
+        masses=(20.0, 30.0, 45.0, 60.0),
+        load_positions=(-0.12,),
+        snow_moduli=(50e6, 200e6),
+        n_points=1024,
+        profile_source=SOURCE,
+    )
+    base.update(kw)
+    return SweepSpec(**base)
+
+
+@pytest.fixture(scope="module")
+def chunks() -> dict:
+    spec = _spec()
+    return {
+        (ski, e): contact_chunk(spec, ski, -0.12, e) for ski in spec.skis for e in spec.snow_moduli
+    }
+
+
+def test_balance_laws_on_stored_values(chunks) -> None:
+    spec = _spec()
+    m = np.asarray(spec.masses)
+    total = spec.zones.index("total")
+    for out in chunks.values():
+        assert out["converged"].all()
+        # force balance, eq. 3: the zones carry the whole load (solver tol 1e-8 -> 1e-6 margin)
+        np.testing.assert_allclose(out["load_share"][:, total], 1.0, atol=1e-6)
+        np.testing.assert_allclose(out["load_share"][:, :total].sum(axis=1), 1.0, atol=1e-6)
+        # units of the store: mean [kPa] · area [cm²] = share · m·g [N] (round-off only)
+        force = out["mean_pressure_kpa"] * 1e3 * out["area_cm2"] * 1e-4
+        want = out["load_share"] * (m * STANDARD_GRAVITY)[:, None]
+        ok = out["area_cm2"] > 0
+        np.testing.assert_allclose(force[ok], want[ok], rtol=1e-9)
+        # lengths and areas add up over the zones; max >= mean
+        np.testing.assert_allclose(
+            out["area_cm2"][:, :total].sum(axis=1), out["area_cm2"][:, total], rtol=1e-12
+        )
+        assert np.all(out["max_pressure_kpa"][ok] >= out["mean_pressure_kpa"][ok])
+
+
+def test_warm_start_does_not_change_the_answer(chunks) -> None:
+    spec = _spec()
+    for ski in spec.skis:
+        out = chunks[(ski, 200e6)]
+        a = 2  # 45 kg, reached by warm starts from 20 and 30 kg
+        _, zones = solve_point(spec, ski, 45.0, -0.12, 200e6, initial_pressure=None)
+        # same contact set to within one station (dx = 1.86 m / 1023 ≈ 1.8 mm) per patch end
+        dx_mm = 1.9
+        assert abs(zones.total.length * 1e3 - out["length_mm"][a, 3]) <= 2 * dx_mm
+        # pressures agree to the solver tolerance scale (1e-8 on Σ|Δp|/Σp -> 1e-5 margin)
+        np.testing.assert_allclose(zones.rear.mean_pressure / 1e3, out["mean_pressure_kpa"][a, 0],
+                                   rtol=1e-5)  # fmt: skip
+
+
+def test_softer_snow_gives_larger_area_and_lower_pressure(chunks) -> None:
+    # Kalliorinne et al. 2023, Figure 7: 50 MPa vs 200 MPa -> larger area, lower mean pressure.
+    for ski in ("skate", "classic"):
+        soft, stiff = chunks[(ski, 50e6)], chunks[(ski, 200e6)]
+        assert np.all(soft["area_cm2"][:, 3] > stiff["area_cm2"][:, 3])
+        assert np.all(soft["mean_pressure_kpa"][:, 3] < stiff["mean_pressure_kpa"][:, 3])
+
+
+def test_breitschaedel_depends_on_the_profile_only(chunks) -> None:
+    for ski in ("skate", "classic"):
+        a, b = chunks[(ski, 50e6)], chunks[(ski, 200e6)]
+        np.testing.assert_array_equal(a["breitschaedel_area_cm2"], b["breitschaedel_area_cm2"])
+        assert np.all(a["breitschaedel_area_cm2"][:, 3] > 0)
