@@ -288,8 +288,9 @@ class BeamSolution:
             the node ``x[clamp]`` (the rigid motion is in ``translation`` and ``rotation``).
         translation, rotation: rigid motion a [m], b [-] (Lagrange multipliers of the balances).
         iterations: pivoting iterations; residual: complementarity residual (dimensionless:
-            max over nodes of violation of h >= 0 and r >= 0 and of |r h|, scaled by F and
-            the free camber range); converged: whether the residual is below tolerance.
+            max over nodes of |h| on the contact set, of the violations of h >= 0 and r >= 0
+            and of |r h|, scaled by F and the free-camber range); converged: whether the
+            active-set iteration terminated with every sign condition met.
     """
 
     ski: Ski
@@ -536,7 +537,7 @@ def solve_beam(
 
     problem = _Lcp(flex=flex, g=g, x=x, f_total=f_total, m_total=m_total, tol_r=tol_r, tol_h=tol_h)
     converged, active, r, a, b, it = False, np.zeros(n, dtype=bool), np.zeros(n), 0.0, 0.0, 0
-    if warm_active is not None and warm_active.sum() >= 2:
+    if warm_active is not None and warm_active.sum() >= 2 and warm_r is None:
         converged, active, r, _h, a, b, it = problem.block_pivoting(warm_active, max_iterations=8)
     if not converged:
         if warm_r is None or np.any(warm_r < 0):
@@ -550,10 +551,12 @@ def solve_beam(
     u = u_boot + model.flex_full @ r
     w, theta = u[0::2].copy(), u[1::2].copy()
     height = model.z0 + a + b * x + w
+    kkt_residual = float(np.max(np.abs(height[active]), initial=0.0)) / href
     height[active] = 0.0
     scale_r = force
     residual = float(
         max(
+            kkt_residual,
             np.max(np.maximum(-height, 0.0)) / href,
             np.max(np.maximum(-r, 0.0)) / scale_r,
             np.max(np.abs(r * height)) / (scale_r * href),

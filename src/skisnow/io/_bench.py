@@ -1,0 +1,320 @@
+"""Camber-bench data: one tidy table, one row per sample, and its metadata.
+
+Columns (field units, named in the header): ``ski`` (str), ``mass_kg`` (load m),
+``load_position_mm`` (x_m from the balance point, positive toward the tip; the paper's "120 mm
+behind the balance point" is -120), ``x_mm`` (position along the ski from the balance point),
+``height_mm`` (camber height h above the bench plane). A *profile* is the set of rows sharing
+(ski, mass_kg, load_position_mm); within a profile x_mm strictly increases.
+
+Files (chosen by suffix):
+
+* ``.csv`` — comment lines starting with ``#`` before the header. One of them is
+  ``# skisnow-bench-metadata: {...}`` holding the metadata as one JSON object; the others are
+  human-readable. Floats are written with 17 significant digits (exact round trip).
+* ``.parquet`` — the same columns; the metadata JSON is stored in the Arrow schema metadata
+  under the key ``skisnow.bench``.
+
+Every file is validated before anything is returned; a failing file loads nothing and raises
+:class:`~skisnow.FileFormatError` naming the file, the row (CSV: the line number in the file;
+Parquet: the 1-based data row) and the column.
+"""
+
+from __future__ import annotations
+
+import difflib
+import json
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from skisnow._errors import FileFormatError, InputError
+
+__all__ = [
+    "BENCH_COLUMNS",
+    "MIN_PROFILE_POINTS",
+    "BenchData",
+    "read_bench",
+    "validate_bench_table",
+    "write_bench",
+]
+
+#: The columns of a bench table, in order.
+BENCH_COLUMNS: tuple[str, ...] = ("ski", "mass_kg", "load_position_mm", "x_mm", "height_mm")
+#: The fewest samples a profile may have.
+MIN_PROFILE_POINTS: int = 10
+_META_TAG = "# skisnow-bench-metadata:"
+_PARQUET_KEY = b"skisnow.bench"
+_NUMERIC = ("mass_kg", "load_position_mm", "x_mm", "height_mm")
+
+
+def _row_label(i: int, row_offset: int, csv: bool) -> str:
+    return f"line {i + row_offset}" if csv else f"row {i + row_offset}"
+
+
+def validate_bench_table(
+    table: pd.DataFrame, *, where: str = "<table>", row_offset: int = 1, csv: bool = False
+) -> pd.DataFrame:
+    """Check a bench table and return a clean copy (column order, dtypes); raise on any defect.
+
+    Args:
+        table: the raw table.
+        where: the file name (or ``<table>``) used in messages.
+        row_offset: number added to the 0-based data row index to report rows (CSV: the line
+            number of the first data row; Parquet and in-memory tables: 1).
+        csv: report ``line N`` (CSV) instead of ``row N``.
+
+    Raises:
+        FileFormatError: missing, misnamed or unexpected columns; non-numeric values; NaN/inf;
+            mass <= 0; duplicated samples; x not strictly increasing within a profile; a
+            profile with fewer than :data:`MIN_PROFILE_POINTS` samples; no rows.
+    """
+    cols = [str(c) for c in table.columns]
+    missing = [c for c in BENCH_COLUMNS if c not in cols]
+    extra = [c for c in cols if c not in BENCH_COLUMNS]
+    if missing or extra:
+        parts = []
+        for c in missing:
+            guess = difflib.get_close_matches(c, extra, n=1, cutoff=0.4)
+            if guess:
+                parts.append(f"column {guess[0]!r} should be named {c!r}")
+            else:
+                parts.append(f"missing column {c!r}")
+        named = {p.split("'")[1] for p in parts if p.startswith("column ")}
+        parts += [f"unexpected column {c!r}" for c in extra if c not in named]
+        raise FileFormatError(
+            f"{where}: {'; '.join(parts)} (a bench table has exactly the columns "
+            f"{', '.join(BENCH_COLUMNS)})"
+        )
+    if len(table) == 0:
+        raise FileFormatError(f"{where}: the table has no rows")
+    out = pd.DataFrame({"ski": table["ski"].astype(str).to_numpy()})
+    for col in _NUMERIC:
+        values = pd.to_numeric(table[col], errors="coerce").to_numpy(dtype=float)
+        raw = table[col].to_numpy()
+        bad_type = np.isnan(values) & ~pd.isna(raw)
+        if bad_type.any():
+            i = int(np.flatnonzero(bad_type)[0])
+            raise FileFormatError(
+                f"{where}: {_row_label(i, row_offset, csv)}, column {col!r}: "
+                f"{raw[i]!r} is not a number"
+            )
+        nonfinite = ~np.isfinite(values)
+        if nonfinite.any():
+            i = int(np.flatnonzero(nonfinite)[0])
+            raise FileFormatError(
+                f"{where}: {_row_label(i, row_offset, csv)}, column {col!r}: value {raw[i]!r} "
+                "is NaN, inf or empty; every value must be a finite number"
+            )
+        out[col] = values
+    ski_blank = out["ski"].str.strip() == ""
+    if ski_blank.any():
+        i = int(np.flatnonzero(ski_blank.to_numpy())[0])
+        raise FileFormatError(
+            f"{where}: {_row_label(i, row_offset, csv)}, column 'ski': empty name"
+        )
+    mass = out["mass_kg"].to_numpy()
+    if np.any(mass <= 0):
+        i = int(np.flatnonzero(mass <= 0)[0])
+        raise FileFormatError(
+            f"{where}: {_row_label(i, row_offset, csv)}, column 'mass_kg': mass {mass[i]} kg "
+            "is not > 0"
+        )
+    key = ["ski", "mass_kg", "load_position_mm", "x_mm"]
+    dup = out.duplicated(subset=key, keep=False).to_numpy()
+    if dup.any():
+        rows = np.flatnonzero(dup)
+        first = out.iloc[rows[0]]
+        same = rows[
+            (out.iloc[rows][key] == first[key]).all(axis=1).to_numpy()
+        ]  # rows equal to the first duplicate
+        labels = ", ".join(_row_label(int(i), row_offset, csv) for i in same[:5])
+        raise FileFormatError(
+            f"{where}: duplicated sample (ski={first['ski']}, mass_kg={first['mass_kg']}, "
+            f"load_position_mm={first['load_position_mm']}, x_mm={first['x_mm']}) at {labels}, "
+            "column 'x_mm'"
+        )
+    groups = out.groupby(["ski", "mass_kg", "load_position_mm"], sort=False).indices
+    for (ski, m, p), idx in groups.items():
+        idx = np.sort(idx)
+        if idx.size < MIN_PROFILE_POINTS:
+            raise FileFormatError(
+                f"{where}: profile (ski={ski}, mass_kg={m}, load_position_mm={p}) starting at "
+                f"{_row_label(int(idx[0]), row_offset, csv)} has {idx.size} samples; at least "
+                f"{MIN_PROFILE_POINTS} are needed (column 'x_mm')"
+            )
+        x = out["x_mm"].to_numpy()[idx]
+        steps = np.diff(x)
+        if np.any(steps <= 0):
+            j = int(idx[int(np.flatnonzero(steps <= 0)[0]) + 1])
+            raise FileFormatError(
+                f"{where}: {_row_label(j, row_offset, csv)}, column 'x_mm': x = {out['x_mm'][j]} "
+                f"mm does not increase within the profile (ski={ski}, mass_kg={m}, "
+                f"load_position_mm={p}); samples of a profile must be ordered by x"
+            )
+    return out
+
+
+@dataclass(frozen=True, eq=False)
+class BenchData:
+    """A camber-bench data set: the tidy ``table`` and its ``metadata``.
+
+    ``table`` has the columns :data:`BENCH_COLUMNS` (field units) and is validated on
+    construction; ``metadata`` is a JSON-serialisable dict (ski name, length_mm, width_mm,
+    balance point convention, source/device, units, ...).
+    """
+
+    table: pd.DataFrame
+    metadata: dict[str, Any] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.table, pd.DataFrame):
+            raise InputError(f"BenchData.table must be a pandas DataFrame, got {type(self.table)}")
+        if not isinstance(self.metadata, Mapping):
+            raise InputError("BenchData.metadata must be a mapping")
+        try:
+            json.dumps(dict(self.metadata), allow_nan=False)
+        except (TypeError, ValueError) as exc:
+            raise InputError(f"BenchData.metadata must be JSON-serialisable: {exc}") from None
+        object.__setattr__(self, "table", validate_bench_table(self.table))
+        object.__setattr__(self, "metadata", dict(self.metadata))
+
+    @property
+    def skis(self) -> tuple[str, ...]:
+        """Ski names in the table (in order of appearance)."""
+        return tuple(pd.unique(self.table["ski"]))
+
+    @property
+    def conditions(self) -> pd.DataFrame:
+        """The load conditions (ski, mass_kg, load_position_mm), one row per profile."""
+        cols = ["ski", "mass_kg", "load_position_mm"]
+        return self.table[cols].drop_duplicates().reset_index(drop=True)
+
+    def profile(
+        self, *, mass_kg: float, load_position_mm: float, ski: str | None = None
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """(x_mm, height_mm) of one measured profile; InputError lists what exists if absent."""
+        t = self.table
+        sel = np.isclose(t["mass_kg"], mass_kg) & np.isclose(
+            t["load_position_mm"], load_position_mm
+        )
+        if ski is not None:
+            sel &= t["ski"] == ski
+        elif len(self.skis) > 1:
+            raise InputError(f"the bench holds several skis {self.skis}; name one with ski=")
+        if not sel.any():
+            raise InputError(
+                f"no profile at mass_kg={mass_kg}, load_position_mm={load_position_mm}; masses: "
+                f"{sorted(pd.unique(t['mass_kg']))}, positions: "
+                f"{sorted(pd.unique(t['load_position_mm']))}"
+            )
+        sub = t[sel]
+        return sub["x_mm"].to_numpy(), sub["height_mm"].to_numpy()
+
+    def equals(self, other: BenchData) -> bool:
+        """Same table values (exactly) and same metadata."""
+        return self.table.equals(other.table) and self.metadata == other.metadata
+
+
+def _suffix(path: Path) -> str:
+    suf = path.suffix.lower()
+    if suf not in (".csv", ".parquet"):
+        raise FileFormatError(
+            f"{path}: unknown bench file type {path.suffix!r}; use .csv or .parquet"
+        )
+    return suf
+
+
+def write_bench(data: BenchData, path: str | Path) -> Path:
+    """Write ``data`` to ``path`` (.csv or .parquet by suffix); return the path."""
+    if not isinstance(data, BenchData):
+        raise InputError(f"write_bench needs a BenchData, got {type(data).__name__}")
+    path = Path(path)
+    suf = _suffix(path)
+    meta = json.dumps(data.metadata, allow_nan=False, sort_keys=True)
+    if suf == ".csv":
+        lines = [
+            "# skisnow camber-bench data: one row per sample; columns carry their unit.",
+            "# load_position_mm and x_mm are measured from the balance point, + toward the tip.",
+            f"{_META_TAG} {meta}",
+        ]
+        body = data.table.to_csv(index=False, float_format="%.17g", lineterminator="\n")
+        path.write_text("\n".join(lines) + "\n" + body, encoding="utf-8")
+    else:
+        import pyarrow as pa
+        import pyarrow.parquet as pq
+
+        tbl = pa.Table.from_pandas(data.table, preserve_index=False)
+        md = dict(tbl.schema.metadata or {})
+        md[_PARQUET_KEY] = meta.encode("utf-8")
+        pq.write_table(tbl.replace_schema_metadata(md), path)
+    return path
+
+
+def read_bench(path: str | Path) -> BenchData:
+    """Read and validate a bench file (.csv or .parquet); see the module docs for the format.
+
+    Raises:
+        FileFormatError: the file is missing, unreadable or fails validation (nothing loaded).
+    """
+    path = Path(path)
+    suf = _suffix(path)
+    if not path.is_file():
+        raise FileFormatError(f"{path}: no such file")
+    metadata: dict[str, Any] = {}
+    if suf == ".csv":
+        try:
+            text = path.read_text(encoding="utf-8")
+        except (OSError, UnicodeDecodeError) as exc:
+            raise FileFormatError(f"{path}: cannot read as UTF-8 text ({exc})") from None
+        lines = text.splitlines()
+        n_comment = 0
+        for n_comment, line in enumerate(lines):
+            if not line.startswith("#"):
+                break
+            if line.startswith(_META_TAG):
+                try:
+                    metadata = json.loads(line[len(_META_TAG) :])
+                except json.JSONDecodeError as exc:
+                    raise FileFormatError(
+                        f"{path}: line {n_comment + 1}: metadata is not valid JSON ({exc})"
+                    ) from None
+                if not isinstance(metadata, dict):
+                    raise FileFormatError(
+                        f"{path}: line {n_comment + 1}: metadata must be an object"
+                    )
+        else:
+            n_comment = len(lines)
+        import io as _io
+
+        try:
+            table = pd.read_csv(
+                _io.StringIO("\n".join(lines[n_comment:])),
+                dtype={"ski": str},
+                keep_default_na=True,
+            )
+        except (pd.errors.ParserError, pd.errors.EmptyDataError) as exc:
+            raise FileFormatError(f"{path}: not a valid CSV table ({exc})") from None
+        # data row i (0-based) sits on file line n_comment + 2 + i (1-based; header first)
+        clean = validate_bench_table(table, where=str(path), row_offset=n_comment + 2, csv=True)
+    else:
+        import pyarrow as pa
+        import pyarrow.parquet as pq
+
+        try:
+            tbl = pq.read_table(path)
+        except (OSError, pa.ArrowException) as exc:
+            raise FileFormatError(f"{path}: not a readable Parquet file ({exc})") from None
+        raw = (tbl.schema.metadata or {}).get(_PARQUET_KEY)
+        if raw is not None:
+            try:
+                metadata = json.loads(raw.decode("utf-8"))
+            except (UnicodeDecodeError, json.JSONDecodeError) as exc:
+                raise FileFormatError(
+                    f"{path}: schema metadata is not valid JSON ({exc})"
+                ) from None
+        clean = validate_bench_table(tbl.to_pandas(), where=str(path), row_offset=1)
+    return BenchData(table=clean, metadata=metadata)

@@ -1,0 +1,60 @@
+"""The one entry point downstream code calls for a loaded camber profile."""
+
+from __future__ import annotations
+
+from typing import Literal
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from skisnow._errors import InputError
+from skisnow.ski._skis import Ski, get_ski
+
+__all__ = ["camber_profile"]
+
+
+def camber_profile(
+    ski_name: str | Ski,
+    *,
+    mass: float,
+    load_position: float,
+    x: ArrayLike | None = None,
+    source: Literal["beam", "network"] = "beam",
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Loaded camber profile h(x) of a ski: seed paper 000, eq. 1, h = f(x, m, x_m).
+
+    Args:
+        ski_name: a shipped ski name (``'classic'``, ``'skate'``) or, for ``source='beam'``,
+            a :class:`~skisnow.ski.Ski`.
+        mass: load m [kg].
+        load_position: x_m [m] from the balance point, positive toward the tip.
+        x: positions [m] on the ski; default: every 1 mm over the running surface.
+        source: ``'beam'`` — the virtual ski (Euler–Bernoulli beam on the rigid bench plane,
+            :func:`~skisnow.ski.solve_beam`, Hermite-interpolated); ``'network'`` — the shipped
+            camber network trained on the virtual bench (issue 4).
+
+    Returns:
+        (x [m], height [m]) with height >= 0 for the beam.
+    """
+    if source not in ("beam", "network"):
+        raise InputError(f"source must be 'beam' or 'network', got {source!r}")
+    ski = ski_name if isinstance(ski_name, Ski) else get_ski(ski_name)
+    if x is None:
+        from skisnow.ski._bench import bench_grid
+
+        xs = bench_grid(ski)
+    else:
+        xs = np.asarray(x, dtype=float)
+        if xs.ndim != 1 or xs.size == 0:
+            raise InputError(f"x must be a non-empty 1-D array of positions [m], got {xs.shape}")
+    if source == "beam":
+        from skisnow.ski._beam import solve_beam
+
+        sol = solve_beam(ski, mass=mass, load_position=load_position)
+        return xs, sol.sample(xs)
+    if isinstance(ski_name, Ski):
+        raise InputError("source='network' needs the name of a shipped ski, not a Ski object")
+    from skisnow.ski._network import shipped_network
+
+    height = shipped_network(ski_name).predict(xs, mass, load_position)
+    return xs, np.asarray(height, dtype=float)
