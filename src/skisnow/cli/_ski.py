@@ -1,1 +1,183 @@
-"""Commands for the ski: skis, bench, metrics."""
+"""Commands for the ski: skis, bench, metrics (thin: parse, call skisnow.ski, render)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated, Any
+
+import numpy as np
+import typer
+
+from skisnow._errors import InputError
+from skisnow.cli._app import app
+from skisnow.cli._render import emit_json, err_console, print_table
+
+__all__ = ["parse_values"]
+
+_JSON = typer.Option(False, "--json", help="Print one JSON document to stdout, nothing else.")
+
+
+def parse_values(text: str, *, name: str) -> list[float]:
+    """Parse ``start:stop:step`` (inclusive), ``a,b,c`` or ``a`` into a list of floats."""
+    try:
+        if ":" in text:
+            parts = [float(p) for p in text.split(":")]
+            if len(parts) != 3 or parts[2] == 0:
+                raise ValueError
+            start, stop, step = parts
+            n = int(np.floor((stop - start) / step + 1e-9)) + 1
+            if n < 1:
+                raise ValueError
+            return [start + i * step for i in range(n)]
+        return [float(p) for p in text.split(",") if p.strip()]
+    except ValueError:
+        raise InputError(
+            f"{name}: cannot read {text!r}; use start:stop:step (e.g. 5:130:5) or a,b,c"
+        ) from None
+
+
+def _progress_bar(total_label: str) -> Any:
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TimeElapsedColumn
+
+    return Progress(
+        f"[bold]{total_label}",
+        BarColumn(),
+        MofNCompleteColumn(),
+        TimeElapsedColumn(),
+        console=err_console,
+        transient=True,
+    )
+
+
+def ski_summary_rows() -> list[dict[str, Any]]:
+    """Key numbers of the shipped skis in field units (used by ``skis`` and ``demo``)."""
+    from skisnow.ski import SHIPPED_SKIS, closing_load, get_ski
+
+    rows = []
+    for name in SHIPPED_SKIS:
+        ski = get_ski(name)
+        kz = ski.kick_zone
+        rows.append(
+            {
+                "ski": name,
+                "kind": ski.kind,
+                "length_mm": ski.length * 1e3,
+                "width_mm": ski.width * 1e3,
+                "x_tail_mm": ski.x_tail * 1e3,
+                "x_tip_mm": ski.x_tip * 1e3,
+                "kick_zone_mm": None if kz is None else [kz[0] * 1e3, kz[1] * 1e3],
+                "free_camber_at_balance_point_mm": float(ski.free_camber(0.0)) * 1e3,
+                "stiffness_at_balance_point_n_m2": float(ski.stiffness(0.0)),
+                "closing_load_at_-80mm_kg": closing_load(ski, load_position=-0.080),
+            }
+        )
+    return rows
+
+
+@app.command()
+def skis(json_out: bool = _JSON) -> None:
+    """List the shipped virtual skis and their key numbers."""
+    rows = ski_summary_rows()
+    if json_out:
+        emit_json({"skis": rows})
+        return
+    cols = list(rows[0])
+    table_rows = []
+    for r in rows:
+        kz = r["kick_zone_mm"]
+        table_rows.append(
+            [
+                r[c] if c != "kick_zone_mm" else ("—" if kz is None else f"{kz[0]:g}..{kz[1]:g}")
+                for c in cols
+            ]
+        )
+    print_table("Shipped virtual skis", cols, table_rows)
+
+
+@app.command()
+def bench(
+    ski: Annotated[str, typer.Argument(help="Shipped ski name (see `skisnow skis`).")],
+    out: Annotated[Path, typer.Option("--out", help="Output file, .csv or .parquet.")],
+    mass_kg: str = typer.Option("5:130:5", "--mass-kg", help="Masses: start:stop:step or a,b,c."),
+    load_position_mm: str = typer.Option(
+        "-240:-40:40",
+        "--load-position-mm",
+        help="Load positions from the balance point (negative = behind): start:stop:step or a,b.",
+    ),
+    noise_mm: float = typer.Option(0.0, "--noise-mm", help="Height noise std [mm] (e.g. 0.01)."),
+    seed: int | None = typer.Option(None, "--seed", help="Seed of the noise."),
+    dx_mm: float = typer.Option(1.0, "--dx-mm", help="Sampling step along the ski [mm]."),
+    json_out: bool = _JSON,
+) -> None:
+    """Run the virtual camber bench on a shipped ski and write the bench table."""
+    from skisnow.io import write_bench
+    from skisnow.ski import get_ski, run_bench
+
+    sk = get_ski(ski)
+    if out.suffix.lower() not in (".csv", ".parquet"):
+        raise InputError(f"--out {out}: use a .csv or .parquet file name")
+    masses = parse_values(mass_kg, name="--mass-kg")
+    positions = [p * 1e-3 for p in parse_values(load_position_mm, name="--load-position-mm")]
+    with _progress_bar(f"bench {ski}") as bar:
+        task = bar.add_task("bench", total=len(set(masses)) * len(set(positions)))
+        data = run_bench(
+            sk,
+            masses=masses,
+            load_positions=positions,
+            dx=dx_mm * 1e-3,
+            noise=noise_mm * 1e-3,
+            seed=seed,
+            progress=lambda done, total: bar.update(task, completed=done),
+        )
+    out.parent.mkdir(parents=True, exist_ok=True)
+    write_bench(data, out)
+    n_profiles = len(data.conditions)
+    doc = {"ski": ski, "file": str(out), "rows": len(data.table), "profiles": n_profiles}
+    if json_out:
+        emit_json(doc)
+        return
+    print_table("Virtual bench", list(doc), [list(doc.values())])
+
+
+def metrics_documents(
+    source: str, *, body_mass_kg: float, load_position_mm: float
+) -> list[dict[str, Any]]:
+    """Metrics (field units) of a shipped ski or of every ski in a bench file."""
+    from skisnow.io import read_bench
+    from skisnow.ski import SHIPPED_SKIS, ski_metrics
+
+    kw = {"body_mass": body_mass_kg, "load_position": load_position_mm * 1e-3}
+    if source in SHIPPED_SKIS:
+        return [ski_metrics(source, **kw).as_field_units()]
+    path = Path(source)
+    if not path.exists():
+        raise InputError(
+            f"{source!r} is neither a shipped ski ({', '.join(SHIPPED_SKIS)}) nor an existing "
+            "bench file (.csv or .parquet)"
+        )
+    data = read_bench(path)
+    return [ski_metrics(data, ski=name, **kw).as_field_units() for name in data.skis]
+
+
+def print_metrics_table(docs: list[dict[str, Any]], title: str) -> None:
+    """Render metrics documents as one table: a row per metric, a column per ski."""
+    keys = [k for k in docs[0] if k != "ski"]
+    rows = [[k, *[d[k] for d in docs]] for k in keys]
+    print_table(title, ["metric", *[d["ski"] for d in docs]], rows)
+
+
+@app.command()
+def metrics(
+    source: str = typer.Argument(..., help="A shipped ski name or a bench file (.csv/.parquet)."),
+    body_mass_kg: float = typer.Option(65.0, "--body-mass-kg", help="Skier's body mass [kg]."),
+    load_position_mm: float = typer.Option(
+        -80.0, "--load-position-mm", help="Load position from the balance point [mm]."
+    ),
+    json_out: bool = _JSON,
+) -> None:
+    """Practitioners' metrics: camber, wax pocket, closing load, stiffness, contact lengths."""
+    docs = metrics_documents(source, body_mass_kg=body_mass_kg, load_position_mm=load_position_mm)
+    if json_out:
+        emit_json({"metrics": docs})
+        return
+    print_metrics_table(docs, f"Ski metrics ({body_mass_kg:g} kg body mass)")

@@ -182,6 +182,14 @@ class BenchData:
         object.__setattr__(self, "table", validate_bench_table(self.table))
         object.__setattr__(self, "metadata", dict(self.metadata))
 
+    @classmethod
+    def _from_validated(cls, table: pd.DataFrame, metadata: dict[str, Any]) -> BenchData:
+        """Wrap a table that :func:`validate_bench_table` just returned (no second check)."""
+        obj = object.__new__(cls)
+        object.__setattr__(obj, "table", table)
+        object.__setattr__(obj, "metadata", dict(metadata))
+        return obj
+
     @property
     def skis(self) -> tuple[str, ...]:
         """Ski names in the table (in order of appearance)."""
@@ -317,4 +325,8 @@ def read_bench(path: str | Path) -> BenchData:
                     f"{path}: schema metadata is not valid JSON ({exc})"
                 ) from None
         clean = validate_bench_table(tbl.to_pandas(), where=str(path), row_offset=1)
-    return BenchData(table=clean, metadata=metadata)
+    try:
+        json.dumps(metadata, allow_nan=False)
+    except ValueError as exc:
+        raise FileFormatError(f"{path}: metadata is not strict JSON ({exc})") from None
+    return BenchData._from_validated(clean, metadata)
