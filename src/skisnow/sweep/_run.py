@@ -120,6 +120,44 @@ def default_workers() -> int:
     return max(1, os.cpu_count() or 1)
 
 
+#: Modules imported once by the fork server of local clusters, so that workers start warm.
+PRELOAD = (
+    "distributed",
+    "numpy",
+    "scipy",
+    "skisnow.sweep._point",
+    "skisnow.contact",
+    "skisnow.ski",
+)
+
+
+def local_cluster(n_workers: int) -> Any:
+    """A :class:`dask.distributed.LocalCluster` of ``n_workers`` processes, one thread each.
+
+    Where the platform has it, workers are forked from a fork server that has already imported
+    the solvers (:data:`PRELOAD`): they start in a fraction of the time of freshly spawned
+    interpreters, and each does not import JAX/SciPy again.
+    """
+    import multiprocessing
+
+    import dask
+    from distributed import LocalCluster
+
+    method = "forkserver" if "forkserver" in multiprocessing.get_all_start_methods() else "spawn"
+    with dask.config.set({"distributed.worker.multiprocessing-method": method}):
+        if method == "forkserver":
+            from distributed.utils import get_mp_context
+
+            get_mp_context().set_forkserver_preload(list(PRELOAD))
+        return LocalCluster(
+            n_workers=n_workers,
+            threads_per_worker=1,
+            processes=True,
+            dashboard_address=None,
+            silence_logs=40,  # logging.ERROR
+        )
+
+
 def run_sweep(
     spec: SweepSpec,
     path: str | Path,
@@ -196,16 +234,8 @@ def run_sweep(
             if scheduler is not None:
                 own_client = Client(scheduler)
             else:
-                from distributed import LocalCluster
-
                 n = default_workers() if workers is None else workers
-                own_cluster = LocalCluster(
-                    n_workers=n,
-                    threads_per_worker=1,
-                    processes=True,
-                    dashboard_address=None,
-                    silence_logs=40,  # logging.ERROR
-                )
+                own_cluster = local_cluster(n)
                 own_client = Client(own_cluster)
             client = own_client
         n_workers = len(client.scheduler_info(n_workers=-1).get("workers", {}))
