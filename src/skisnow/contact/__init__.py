@@ -32,18 +32,30 @@ from skisnow.contact._materials import (
     snow,
 )
 from skisnow.contact._solver import ContactSolution, solve_contact
+from skisnow.contact._zones import (
+    BREITSCHAEDEL_THRESHOLD,
+    Zone,
+    ZoneMetrics,
+    contact_zones,
+    patches,
+)
 
 __all__ = [
     "BASE",
+    "BREITSCHAEDEL_THRESHOLD",
     "SNOW_MODULUS_RANGE",
     "STONE",
     "ContactSolution",
     "Convolution",
     "Material",
+    "Zone",
+    "ZoneMetrics",
     "contact_modulus",
+    "contact_zones",
     "effective_modulus",
     "line_convolution",
     "line_kernel",
+    "patches",
     "reference",
     "snow",
     "solve_contact",

@@ -247,7 +247,8 @@ class Convolution:
             index.append(idx)
         embedded[np.ix_(*index)] = src
         workers = default_workers() if workers is None else max(1, int(workers))
-        spectrum = sfft.rfftn(embedded, workers=workers)
+        real_axis = _real_axis(shape)
+        spectrum = _forward(embedded, fft_shape, real_axis, workers)
         even = all(np.allclose(kernel, np.flip(kernel, axis=a)) for a in range(kernel.ndim))
         if even:
             spectrum = np.ascontiguousarray(spectrum.real)
@@ -273,13 +274,21 @@ class Convolution:
                 ..., : self.shape[0]
             ]
         if self.ndim == 2:
-            # axis by axis, skipping the transforms of rows that are known to be zero (padding)
+            # axis by axis, skipping the transforms of rows that are known to be zero (padding);
+            # the real transform runs along the longer axis, the complex one along the shorter
             (nx, ny), (lx, ly) = self.shape, self.fft_shape
-            spec = sfft.rfft(p, n=ly, axis=-1, workers=self.workers)
-            spec = sfft.fft(spec, n=lx, axis=-2, workers=self.workers, overwrite_x=True)
+            w = self.workers
+            if _real_axis(self.shape) == 1:
+                spec = sfft.rfft(p, n=ly, axis=-1, workers=w)
+                spec = sfft.fft(spec, n=lx, axis=-2, workers=w, overwrite_x=True)
+                spec *= self.spectrum
+                spec = sfft.ifft(spec, axis=-2, workers=w, overwrite_x=True)[..., :nx, :]
+                return sfft.irfft(spec, n=ly, axis=-1, workers=w)[..., :ny]
+            spec = sfft.rfft(p, n=lx, axis=-2, workers=w)
+            spec = sfft.fft(spec, n=ly, axis=-1, workers=w, overwrite_x=True)
             spec *= self.spectrum
-            spec = sfft.ifft(spec, axis=-2, workers=self.workers, overwrite_x=True)[..., :nx, :]
-            return sfft.irfft(spec, n=ly, axis=-1, workers=self.workers)[..., :ny]
+            spec = sfft.ifft(spec, axis=-1, workers=w, overwrite_x=True)[..., :ny]
+            return sfft.irfft(spec, n=lx, axis=-2, workers=w)[..., :nx, :]
         axes = tuple(range(p.ndim - self.ndim, p.ndim))
         spec = sfft.rfftn(p, s=self.fft_shape, axes=axes, workers=self.workers)
         spec *= self.spectrum
@@ -291,6 +300,23 @@ class Convolution:
         """Self-influence coefficient K(0) [m/Pa]: a cell's displacement under its own 1 Pa."""
         # inverse DFT at index 0 = mean of the full (Hermitian) spectrum
         return float(_self_coefficient(self))
+
+
+def _real_axis(shape: tuple[int, ...]) -> int:
+    """Axis of the real-to-complex transform: the last one, unless the first is longer."""
+    if len(shape) == 2 and shape[0] > shape[1]:
+        return 0
+    return len(shape) - 1
+
+
+def _forward(
+    embedded: np.ndarray, fft_shape: tuple[int, ...], real_axis: int, workers: int
+) -> np.ndarray:
+    """The forward transform of :meth:`Convolution.__call__` applied to a padded kernel."""
+    if len(fft_shape) == 2 and real_axis == 0:
+        spec = sfft.rfft(embedded, axis=0, workers=workers)
+        return sfft.fft(spec, axis=1, workers=workers)
+    return sfft.rfftn(embedded, workers=workers)
 
 
 def _self_coefficient(conv: Convolution) -> float:

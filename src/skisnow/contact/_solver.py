@@ -27,6 +27,7 @@ iteration with fewer constraints.
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Callable
 from dataclasses import dataclass, field
 from typing import Literal
@@ -145,7 +146,7 @@ class ContactSolution:
         """Σ (x − x_m) p dA [N m] about the load point (0 under moment control)."""
         arm = self.x - self.load_position
         q = self.pressure.sum(axis=1) if self.pressure.ndim == 2 else self.pressure
-        return float(np.dot(arm, q) * self.cell_area)
+        return float(_dot(arm, q) * self.cell_area)
 
 
 # --------------------------------------------------------------------------------------------
@@ -185,6 +186,11 @@ def _uniform_grid(name: str, x: ArrayLike) -> tuple[np.ndarray, float]:
 # --------------------------------------------------------------------------------------------
 
 
+def _dot(a: np.ndarray, b: np.ndarray) -> float:
+    """Inner product without BLAS threads (they spin and stall on a busy machine)."""
+    return float(np.einsum("i,i->", a, b))
+
+
 def _plane_fit(v: np.ndarray, xi: np.ndarray, sel: np.ndarray) -> tuple[float, float]:
     """Least-squares a + b·ξ to v on the selected cells (b = 0 if only one ξ is present)."""
     vs, xs = v[sel], xi[sel]
@@ -192,7 +198,7 @@ def _plane_fit(v: np.ndarray, xi: np.ndarray, sel: np.ndarray) -> tuple[float, f
     if n == 0:
         return 0.0, 0.0
     sx, sv = xs.sum(), vs.sum()
-    sxx, sxv = np.dot(xs, xs), np.dot(xs, vs)
+    sxx, sxv = _dot(xs, xs), _dot(xs, vs)
     det = n * sxx - sx * sx
     if det <= 1e-12 * max(n * sxx, 1e-300):
         return float(sv / n), 0.0
@@ -212,8 +218,8 @@ def _restore(p: np.ndarray, xi: np.ndarray, total: float, moment: bool) -> tuple
         return (p * (total / s), True) if s > 0 else (p, False)
     for _ in range(8):
         m0 = p.sum()
-        m1 = np.dot(xi, p)
-        m2 = np.dot(xi * xi, p)
+        m1 = _dot(xi, p)
+        m2 = _dot(xi * xi, p)
         det = m0 * m2 - m1 * m1
         if m0 <= 0 or det <= 1e-14 * m0 * m2:
             return p, False
@@ -274,8 +280,11 @@ def _start(
     m = int(np.searchsorted(carried, total))
     m = min(max(m, 2 if ds.size > 1 else 1), ds.size)
     s = ds[m - 1] if m < ds.size else ds[-1]
-    s = max(s, ds[min(1, ds.size - 1)]) * (1.0 + 1e-9) + 1e-300
-    p = np.maximum(s - d, 0.0)
+    s = max(s, ds[min(1, ds.size - 1)])
+    if s > 0:
+        p = np.where(d <= s, (s - d) + 0.1 * s, 0.0)
+    else:  # a flat profile (a punch): start uniform on the lowest cells
+        p = (d <= 0.0).astype(np.float64)
     if moment:
         # make sure the support straddles the load point
         for side in (xi <= 0, xi >= 0):
@@ -346,10 +355,10 @@ def _pk(
 
     def fit(v: np.ndarray, cnt: float, sx: float, sxx: float) -> tuple[float, float]:
         """Least-squares plane a + bξ of v on the contact set (masked sums)."""
-        sv = float(np.dot(v, m))
+        sv = float(_dot(v, m))
         if not moment:
             return sv / cnt, 0.0
-        sxv = float(np.dot(v, xm_))
+        sxv = float(_dot(v, xm_))
         det = cnt * sxx - sx * sx
         if det <= 1e-12 * max(cnt * sxx, 1e-300):
             return sv / cnt, 0.0
@@ -377,14 +386,14 @@ def _pk(
         if moment:
             np.multiply(xi, m, out=xm_)
             sx = float(xm_.sum())
-            sxx = float(np.dot(xm_, xi))
+            sxx = float(_dot(xm_, xi))
         if constrained:
             a_, b_ = fit(g, cnt, sx, sxx)
             g -= a_
             if b_ != 0.0:
                 g -= b_ * xi
         gm = g * m
-        big_g = float(np.dot(gm, gm))
+        big_g = float(_dot(gm, gm))
         if conj and g_old > 0:
             t *= big_g / g_old
             t *= m
@@ -399,16 +408,32 @@ def _pk(
             t -= ta * m
             if tb != 0.0:
                 t -= tb * xm_
-        r = apply(t)
-        denom = float(np.dot(r, t))  # t is zero off the contact set and orthogonal to the plane
-        if denom <= 0.0 or not np.isfinite(denom):
-            if big_g == 0.0:
-                converged, message = True, "exact solution"
+        g_scale = float(np.abs(g).max()) + 1e-300
+        if float(np.abs(t).max()) <= 1e-13 * g_scale:
+            # nothing to move on this contact set: exact there; grow it by the overlapping cells
+            overlap = (p == 0.0) & (g < 0.0)
+            if not overlap.any():
+                converged, message = True, "exact solution on the contact set"
                 history.append(0.0)
                 break
+            p = p.copy()
+            p[overlap] = -g[overlap] / conv.self_influence
+            conj = False
+            if constrained:
+                assert total is not None
+                p, ok = _restore(p, xi, total, moment)
+                if not ok:
+                    message = "the contact set cannot carry the load and the moment"
+                    break
+            u = apply(p)
+            history.append(float("inf"))
+            continue
+        r = apply(t)
+        denom = float(_dot(r, t))  # t is zero off the contact set and orthogonal to the plane
+        if denom <= 0.0 or not np.isfinite(denom):
             message = "search direction lost positivity (ill-conditioned operator)"
             break
-        tau = float(np.dot(gm, t)) / denom
+        tau = float(_dot(gm, t)) / denom
         p_old = p
         np.multiply(t, -tau, out=trial)
         trial += p
@@ -490,12 +515,12 @@ def solve_contact(
     translation: float | None = None,
     rotation: float = 0.0,
     initial_pressure: ArrayLike | None = None,
-    tol: float = 1e-10,
+    tol: float = 1e-8,
     max_iter: int = 5000,
     edge_contact: Literal["error", "allow"] = "error",
     reference_length: float = 1.0,
     workers: int | None = None,
-    multilevel: bool = True,
+    multilevel: bool | None = None,
     raise_on_failure: bool = False,
 ) -> ContactSolution:
     """Press a rigid profile into an elastic half-space with force and moment balance (eq. 3).
@@ -549,7 +574,8 @@ def solve_contact(
         FFT threads (default: all cores).
     multilevel
         Without ``initial_pressure``, start from the solution on a grid twice as coarse
-        (recursively, down to ~512 stations or 128² cells): fewer fine-grid iterations.
+        (recursively, down to 128² cells): fewer fine-grid iterations. Default: on for the
+        surface model, off for strip/line (where the coarse solves cost more than they save).
     raise_on_failure
         Raise :class:`~skisnow.ConvergenceError` (with ``.result``) when not converged.
 
@@ -623,7 +649,7 @@ def solve_contact(
         footprint = np.abs(yy)[None, :] <= wx[:, None] / 2 + 1e-9 * dy
         if not footprint.any(axis=1).all():
             raise InputError("the width profile leaves stations without any cell; refine n_across")
-        conv = surface_convolution((x.size, yy.size), dx, dy, modulus=modulus, workers=workers)
+        conv = _operator("surface", (x.size, yy.size), dx, dy, modulus, 0.0, workers)
         cell_area = dx * dy
         width_out: float | np.ndarray = wx if not np.allclose(wx, wx[0]) else float(wx[0])
         y_out: np.ndarray | None = yy
@@ -640,12 +666,8 @@ def solve_contact(
         else:
             w = _finite_positive("width", width)
         footprint = np.ones(x.shape, dtype=bool)
-        if model == "strip":
-            conv = strip_convolution(x.size, dx, w, modulus=modulus, workers=workers)
-        else:
-            conv = line_convolution(
-                x.size, dx, modulus=modulus, reference_length=reference_length, workers=workers
-            )
+        extra = w if model == "strip" else float(reference_length)
+        conv = _operator(model, (x.size,), dx, 0.0, modulus, extra, workers)
         cell_area = dx * w
         width_out = w
         y_out = None
@@ -680,6 +702,8 @@ def solve_contact(
             p0, ok = _restore(ipf, xif, total, moment)  # type: ignore[arg-type]
             if not ok:
                 p0 = None
+    if multilevel is None:
+        multilevel = model == "surface"
     if p0 is None and control != "displacement" and multilevel:
         coarse = _coarse_start(
             x,
@@ -862,6 +886,24 @@ def _coarse_start(
     if pc.ndim == 2:
         return np.repeat(np.repeat(pc, 2, axis=0), 2, axis=1)
     return np.repeat(pc, 2)
+
+
+@functools.lru_cache(maxsize=16)
+def _operator(
+    model: str,
+    shape: tuple[int, ...],
+    dx: float,
+    dy: float,
+    modulus: float,
+    extra: float,
+    workers: int | None,
+) -> Convolution:
+    """The half-space operator of a model on a grid, cached (sweeps reuse the same few grids)."""
+    if model == "surface":
+        return surface_convolution(shape, dx, dy, modulus=modulus, workers=workers)  # type: ignore[arg-type]
+    if model == "strip":
+        return strip_convolution(shape[0], dx, extra, modulus=modulus, workers=workers)
+    return line_convolution(shape[0], dx, modulus=modulus, reference_length=extra, workers=workers)
 
 
 def _scatter(p: np.ndarray, idx: np.ndarray | None, shape: tuple[int, ...]) -> np.ndarray:

@@ -1,0 +1,280 @@
+"""Contact zones and their metrics (Kalliorinne et al. 2023, §4, Figures 4–9).
+
+A *patch* is a connected run of stations along the ski where the ski touches the snow (for the
+surface model: where any cell across the width is in contact). Patches are grouped into zones:
+
+* with a kick (grip-wax) zone ``(start, end)`` (classic skis): contact stations inside it are
+  ``middle``, those behind it ``rear`` and those in front ``front`` (a patch that runs from the
+  rear glide zone into the kick zone, as when the ski collapses, counts in both zones, cut at
+  the kick-zone boundary — the paper's Figure 6 right);
+* without one (skate skis, or ``kick_zone=None``): ``rear``/``front`` are split at the top of the
+  camber pocket, the station of greatest height h between the centres of the rearmost and the
+  frontmost patch (the arch that separates the two glide zones); a single patch goes whole to
+  ``rear`` if its centre lies behind the load point, else to ``front``.
+
+Per zone and in total: start, end [m] (outer cell edges), length [m] (sum of patch lengths — the
+paper's "two patches that amount to 132 mm"), area [m²], force [N], load share, mean pressure
+(force/area) and max pressure [Pa], number of patches and penetration depth (largest snow
+displacement in the zone) [m]. Beside them, the Breitschädel criterion (contact wherever the
+loaded camber height, measured from its lowest point, is below 50 µm) with the same grouping.
+"""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass
+
+import numpy as np
+
+from skisnow._errors import InputError
+from skisnow.contact._solver import ContactSolution
+
+__all__ = ["BREITSCHAEDEL_THRESHOLD", "Zone", "ZoneMetrics", "contact_zones", "patches"]
+
+#: Breitschädel (2010): the ski is taken to touch the snow where its camber height is < 50 µm.
+BREITSCHAEDEL_THRESHOLD = 50e-6
+
+ZONE_NAMES = ("rear", "middle", "front")
+
+
+@dataclass(frozen=True, kw_only=True)
+class Zone:
+    """Metrics of one zone (SI). Pressures are NaN where not defined (empty zone, Breitschädel)."""
+
+    name: str
+    start: float
+    end: float
+    length: float
+    area: float
+    force: float
+    load_share: float
+    mean_pressure: float
+    max_pressure: float
+    patches: int
+    penetration: float
+    intervals: tuple[tuple[float, float], ...]
+
+    def as_dict(self) -> dict:
+        """Plain dict (SI units), intervals as lists."""
+        d = asdict(self)
+        d["intervals"] = [list(iv) for iv in self.intervals]
+        return d
+
+
+@dataclass(frozen=True, kw_only=True)
+class ZoneMetrics:
+    """Zones of a contact solution: ``rear``, ``middle``, ``front``, ``total``, Breitschädel."""
+
+    rear: Zone
+    middle: Zone
+    front: Zone
+    total: Zone
+    breitschaedel: dict[str, Zone]
+    split: float
+    kick_zone: tuple[float, float] | None
+    threshold: float
+
+    def __getitem__(self, name: str) -> Zone:
+        if name not in ("rear", "middle", "front", "total"):
+            raise KeyError(name)
+        return getattr(self, name)
+
+    def as_dict(self) -> dict:
+        """Nested plain dict in SI units."""
+        out = {n: self[n].as_dict() for n in ("rear", "middle", "front", "total")}
+        out["breitschaedel"] = {k: v.as_dict() for k, v in self.breitschaedel.items()}
+        out["split"] = self.split
+        out["kick_zone"] = list(self.kick_zone) if self.kick_zone else None
+        out["threshold"] = self.threshold
+        return out
+
+
+def patches(mask: np.ndarray) -> list[tuple[int, int]]:
+    """Connected runs of True in a 1D mask as ``(first, last)`` index pairs (inclusive)."""
+    m = np.asarray(mask, dtype=bool).astype(np.int8)
+    if m.ndim != 1:
+        raise InputError(f"patches() needs a 1D mask, got shape {m.shape}")
+    d = np.diff(np.concatenate([[0], m, [0]]))
+    starts = np.flatnonzero(d == 1)
+    ends = np.flatnonzero(d == -1) - 1
+    return list(zip(starts.tolist(), ends.tolist(), strict=True))
+
+
+def _group(
+    runs: list[tuple[int, int]],
+    x: np.ndarray,
+    height: np.ndarray,
+    load_position: float,
+    kick_zone: tuple[float, float] | None,
+    split: float | None,
+) -> tuple[dict[str, list[tuple[int, int]]], float]:
+    """Assign the stations of the runs to zones; a run crossing a zone boundary is cut there."""
+    if kick_zone is not None:
+        k0, k1 = kick_zone
+        zone_of = np.where(x < k0, 0, np.where(x <= k1, 1, 2))
+        split_used = float("nan") if split is None else float(split)
+    else:
+        centres = [0.5 * (x[i] + x[j]) for i, j in runs]
+        if split is None and len(runs) >= 2:
+            lo, hi = min(centres), max(centres)
+            inside = (x >= lo) & (x <= hi)
+            split = float(x[inside][np.argmax(height[inside])])
+        if split is None:
+            # a single patch (or none) goes whole to the side of the load point it lies on
+            split_used = float(load_position)
+            side = 0 if (runs and centres[0] < split_used) else 2
+            zone_of = np.full(x.size, side)
+        else:
+            split_used = float(split)
+            zone_of = np.where(x < split_used, 0, 2)
+    groups: dict[str, list[tuple[int, int]]] = {n: [] for n in ZONE_NAMES}
+    for i, j in runs:
+        seg = zone_of[i : j + 1]
+        cuts = np.flatnonzero(np.diff(seg)) + 1
+        bounds = [0, *cuts.tolist(), seg.size]
+        for a, b in zip(bounds[:-1], bounds[1:], strict=True):
+            groups[ZONE_NAMES[int(seg[a])]].append((i + a, i + b - 1))
+    return groups, split_used
+
+
+def _zone(
+    name: str,
+    runs: list[tuple[int, int]],
+    x: np.ndarray,
+    dx: float,
+    line_force: np.ndarray | None,
+    line_area: np.ndarray,
+    pmax_along: np.ndarray | None,
+    pen_along: np.ndarray | None,
+    total_force: float,
+) -> Zone:
+    if not runs:
+        return Zone(
+            name=name,
+            start=float("nan"),
+            end=float("nan"),
+            length=0.0,
+            area=0.0,
+            force=0.0,
+            load_share=0.0,
+            mean_pressure=float("nan"),
+            max_pressure=0.0 if line_force is not None else float("nan"),
+            patches=0,
+            penetration=0.0 if pen_along is not None else float("nan"),
+            intervals=(),
+        )
+    sel = np.zeros(x.size, dtype=bool)
+    for i, j in runs:
+        sel[i : j + 1] = True
+    area = float(line_area[sel].sum())
+    intervals = tuple((float(x[i] - dx / 2), float(x[j] + dx / 2)) for i, j in runs)
+    if line_force is not None:
+        force = float(line_force[sel].sum())
+        mean_p = force / area if area > 0 else float("nan")
+        max_p = float(pmax_along[sel].max())  # type: ignore[index]
+        share = force / total_force if total_force > 0 else float("nan")
+        pen = float(pen_along[sel].max())  # type: ignore[index]
+    else:
+        force, mean_p, max_p, share, pen = 0.0, float("nan"), float("nan"), 0.0, float("nan")
+    return Zone(
+        name=name,
+        start=intervals[0][0],
+        end=intervals[-1][1],
+        length=float(sel.sum() * dx),
+        area=area,
+        force=force,
+        load_share=share,
+        mean_pressure=mean_p,
+        max_pressure=max_p,
+        patches=len(runs),
+        penetration=pen,
+        intervals=intervals,
+    )
+
+
+def contact_zones(
+    solution: ContactSolution,
+    *,
+    kick_zone: tuple[float, float] | None = None,
+    split: float | None = None,
+    threshold: float = BREITSCHAEDEL_THRESHOLD,
+) -> ZoneMetrics:
+    """Group the contact patches of ``solution`` into rear / middle / front zones with metrics.
+
+    Parameters
+    ----------
+    solution
+        A :class:`~skisnow.contact.ContactSolution`.
+    kick_zone
+        ``(start, end)`` [m] of the kick-wax zone (classic skis, e.g. ``Ski.kick_zone``); patches
+        centred inside it form the ``middle`` zone. ``None``: rear/front only.
+    split
+        Override the rear/front split station [m] (default: the top of the camber pocket).
+    threshold
+        Breitschädel height threshold [m] (default 50 µm).
+
+    Returns
+    -------
+    ZoneMetrics
+        ``rear``, ``middle``, ``front``, ``total`` (:class:`Zone`, SI units) and
+        ``breitschaedel`` (dict of the same four names; lengths and areas only).
+    """
+    if kick_zone is not None:
+        k0, k1 = (float(kick_zone[0]), float(kick_zone[1]))
+        if not (np.isfinite(k0) and np.isfinite(k1) and k0 < k1):
+            raise InputError(f"kick_zone must be (start, end) with start < end, got {kick_zone}")
+        kick_zone = (k0, k1)
+    if not (np.isfinite(threshold) and threshold > 0):
+        raise InputError(f"threshold must be positive, got {threshold!r}")
+    x = solution.x
+    dx = solution.dx
+    p = solution.pressure
+    if p.ndim == 2:
+        assert solution.y is not None
+        dy = float(solution.y[1] - solution.y[0]) if solution.y.size > 1 else float(solution.width)
+        contact = p > 0
+        along = contact.any(axis=1)
+        line_area = contact.sum(axis=1) * dx * dy
+        line_force = p.sum(axis=1) * dx * dy
+        pmax = p.max(axis=1)
+        pen = np.where(contact, solution.displacement, -np.inf).max(axis=1)
+        h_along = np.where(solution.footprint, solution.height, np.inf).min(axis=1)
+        footprint_width = solution.footprint.sum(axis=1) * dy
+    else:
+        along = p > 0
+        w = float(solution.width)  # type: ignore[arg-type]
+        line_area = np.full(x.size, dx * w)
+        line_force = p * dx * w
+        pmax = p
+        pen = solution.displacement
+        h_along = solution.height
+        footprint_width = np.full(x.size, w)
+    total_force = float(line_force.sum())
+    runs = patches(along)
+    groups, split_used = _group(runs, x, h_along, solution.load_position, kick_zone, split)
+    zones = {
+        n: _zone(n, groups[n], x, dx, line_force, line_area, pmax, pen, total_force)
+        for n in ZONE_NAMES
+    }
+    total = _zone("total", runs, x, dx, line_force, line_area, pmax, pen, total_force)
+
+    # Breitschädel: contact wherever the loaded camber height is below the threshold
+    hb = h_along - np.min(h_along)
+    b_runs = patches(hb < threshold)
+    b_groups, _ = _group(
+        b_runs, x, h_along, solution.load_position, kick_zone, split_used if runs else split
+    )
+    b_area = footprint_width * dx
+    breit = {
+        n: _zone(n, b_groups[n], x, dx, None, b_area, None, None, total_force) for n in ZONE_NAMES
+    }
+    breit["total"] = _zone("total", b_runs, x, dx, None, b_area, None, None, total_force)
+    return ZoneMetrics(
+        rear=zones["rear"],
+        middle=zones["middle"],
+        front=zones["front"],
+        total=total,
+        breitschaedel=breit,
+        split=split_used,
+        kick_zone=kick_zone,
+        threshold=float(threshold),
+    )
