@@ -1,0 +1,138 @@
+"""Bench files: round trips (CSV, Parquet) and every validation error, named by file/row/column."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from skisnow import FileFormatError, InputError
+from skisnow.io import MIN_PROFILE_POINTS, BenchData, read_bench, write_bench
+from skisnow.ski import run_bench, ski_metrics
+
+
+@pytest.fixture(scope="module")
+def bench() -> BenchData:
+    return run_bench("classic", masses=[30, 35, 60, 65], load_positions=[-0.08], noise=1e-5, seed=1)
+
+
+@pytest.mark.parametrize("suffix", [".csv", ".parquet"])
+def test_round_trip_is_exact_and_metrics_equal(
+    bench: BenchData, tmp_path: Path, suffix: str
+) -> None:
+    path = write_bench(bench, tmp_path / f"b{suffix}")
+    back = read_bench(path)
+    assert back.equals(bench)  # values bit for bit (17 significant digits in CSV) and metadata
+    assert back.metadata["ski"] == "classic" and back.metadata["units"]["x_mm"] == "mm"
+    assert ski_metrics(back) == ski_metrics(bench)
+
+
+def _small_table(n: int = MIN_PROFILE_POINTS) -> pd.DataFrame:
+    x = np.arange(n, dtype=float)
+    return pd.DataFrame(
+        {
+            "ski": ["s"] * (2 * n),
+            "mass_kg": [10.0] * n + [20.0] * n,
+            "load_position_mm": [-80.0] * (2 * n),
+            "x_mm": np.concatenate([x, x]),
+            "height_mm": np.linspace(0.0, 1.0, 2 * n),
+        }
+    )
+
+
+def _write_csv(tmp_path: Path, table: pd.DataFrame) -> Path:
+    path = tmp_path / "bad.csv"
+    path.write_text("# a comment line\n" + table.to_csv(index=False), encoding="utf-8")
+    return path
+
+
+def _expect(path: Path, *patterns: str) -> None:
+    with pytest.raises(FileFormatError) as info:
+        read_bench(path)
+    msg = str(info.value)
+    assert str(path) in msg
+    for p in patterns:
+        assert p in msg, msg
+
+
+def test_valid_small_csv_without_metadata(tmp_path: Path) -> None:
+    data = read_bench(_write_csv(tmp_path, _small_table()))
+    assert data.metadata == {} and len(data.table) == 2 * MIN_PROFILE_POINTS
+
+
+def test_missing_and_misnamed_columns(tmp_path: Path) -> None:
+    t = _small_table()
+    _expect(_write_csv(tmp_path, t.drop(columns="height_mm")), "missing column 'height_mm'")
+    _expect(_write_csv(tmp_path, t.rename(columns={"x_mm": "x"})), "'x' should be named 'x_mm'")
+    _expect(_write_csv(tmp_path, t.assign(extra=1.0)), "unexpected column 'extra'")
+
+
+def test_nan_inf_and_text(tmp_path: Path) -> None:
+    # data row i of this file is on line i + 3 (comment line, header line, 1-based)
+    t = _small_table()
+    t.loc[4, "height_mm"] = np.nan
+    _expect(_write_csv(tmp_path, t), "line 7", "'height_mm'", "NaN")
+    t = _small_table()
+    t.loc[2, "x_mm"] = np.inf
+    _expect(_write_csv(tmp_path, t), "line 5", "'x_mm'")
+    t = _small_table().astype({"mass_kg": object})
+    t.loc[3, "mass_kg"] = "heavy"
+    _expect(_write_csv(tmp_path, t), "line 6", "'mass_kg'", "not a number")
+
+
+def test_negative_mass(tmp_path: Path) -> None:
+    t = _small_table()
+    t.loc[MIN_PROFILE_POINTS:, "mass_kg"] = -20.0
+    _expect(_write_csv(tmp_path, t), f"line {MIN_PROFILE_POINTS + 3}", "'mass_kg'", "not > 0")
+
+
+def test_duplicated_sample(tmp_path: Path) -> None:
+    t = _small_table()
+    t = pd.concat([t.iloc[:3], t.iloc[[2]], t.iloc[3:]], ignore_index=True)
+    _expect(_write_csv(tmp_path, t), "duplicated sample", "line 5", "line 6", "'x_mm'")
+
+
+def test_x_not_increasing(tmp_path: Path) -> None:
+    t = _small_table()
+    t.loc[5, "x_mm"], t.loc[6, "x_mm"] = 6.0, 5.0
+    _expect(_write_csv(tmp_path, t), "line 9", "'x_mm'", "does not increase")
+
+
+def test_too_few_points(tmp_path: Path) -> None:
+    t = _small_table().iloc[: 2 * MIN_PROFILE_POINTS - 1]
+    _expect(_write_csv(tmp_path, t), "mass_kg=20.0", f"{MIN_PROFILE_POINTS - 1} samples")
+
+
+def test_parquet_errors_name_the_row(tmp_path: Path) -> None:
+    t = _small_table()
+    t.loc[7, "height_mm"] = np.nan
+    path = tmp_path / "bad.parquet"
+    t.to_parquet(path)
+    _expect(path, "row 8", "'height_mm'")
+
+
+def test_file_level_errors(tmp_path: Path, bench: BenchData) -> None:
+    _expect(tmp_path / "absent.csv", "no such file")
+    _expect(tmp_path / "x.txt", "unknown bench file type")
+    bad_meta = tmp_path / "meta.csv"
+    bad_meta.write_text(
+        "# skisnow-bench-metadata: {not json\n" + _small_table().to_csv(index=False)
+    )
+    _expect(bad_meta, "line 1", "not valid JSON")
+    garbage = tmp_path / "g.parquet"
+    garbage.write_bytes(b"not parquet at all")
+    _expect(garbage, "not a readable Parquet file")
+    empty = tmp_path / "e.csv"
+    empty.write_text(",".join(_small_table().columns) + "\n")
+    _expect(empty, "no rows")
+    with pytest.raises(FileFormatError, match="unknown bench file type"):
+        write_bench(bench, tmp_path / "b.xlsx")
+
+
+def test_benchdata_validates_in_memory() -> None:
+    with pytest.raises(FileFormatError, match="<table>"):
+        BenchData(table=_small_table().drop(columns="ski"))
+    with pytest.raises(InputError, match="JSON"):
+        BenchData(table=_small_table(), metadata={"bad": object()})
