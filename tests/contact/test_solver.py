@@ -254,7 +254,7 @@ def test_bad_input_is_rejected_clearly() -> None:
     h = ski_like(x)
     bad = h.copy()
     bad[7] = np.nan
-    with pytest.raises(InputError, match="non-finite.*index"):
+    with pytest.raises(InputError, match=r"non-finite.*index"):
         solve_contact(x, bad, **_kw())
     with pytest.raises(InputError, match="shape"):
         solve_contact(x, h[:-1], **_kw())

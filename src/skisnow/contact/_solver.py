@@ -281,10 +281,8 @@ def _start(
     m = min(max(m, 2 if ds.size > 1 else 1), ds.size)
     s = ds[m - 1] if m < ds.size else ds[-1]
     s = max(s, ds[min(1, ds.size - 1)])
-    if s > 0:
-        p = np.where(d <= s, (s - d) + 0.1 * s, 0.0)
-    else:  # a flat profile (a punch): start uniform on the lowest cells
-        p = (d <= 0.0).astype(np.float64)
+    # (s = 0: a flat profile, e.g. a punch: start uniform on the lowest cells)
+    p = np.where(d <= s, (s - d) + 0.1 * s, 0.0) if s > 0 else (d <= 0.0).astype(np.float64)
     if moment:
         # make sure the support straddles the load point
         for side in (xi <= 0, xi >= 0):

@@ -21,6 +21,7 @@ loaded camber height, measured from its lowest point, is below 50 µm) with the 
 
 from __future__ import annotations
 
+import itertools
 from dataclasses import asdict, dataclass
 
 import numpy as np
@@ -131,7 +132,7 @@ def _group(
         seg = zone_of[i : j + 1]
         cuts = np.flatnonzero(np.diff(seg)) + 1
         bounds = [0, *cuts.tolist(), seg.size]
-        for a, b in zip(bounds[:-1], bounds[1:], strict=True):
+        for a, b in itertools.pairwise(bounds):
             groups[ZONE_NAMES[int(seg[a])]].append((i + a, i + b - 1))
     return groups, split_used
 
