@@ -164,6 +164,9 @@ def report(
     workers: Annotated[
         int | None, typer.Option("--workers", help="Dask workers for the maps (0: in process).")
     ] = 0,
+    profile_source: Annotated[
+        str, typer.Option("--profile-source", help="Loaded profile: network or beam.")
+    ] = "network",
     scheduler: Annotated[
         str | None,
         typer.Option("--scheduler", envvar="SKISNOW_SCHEDULER", help="Existing Dask scheduler."),
@@ -180,6 +183,7 @@ def report(
         load_position=load_position_mm * 1e-3,
         workers=workers,
         scheduler=scheduler,
+        profile_source=profile_source,
     )
     if json_out:
         emit_json({"report": str(path)})

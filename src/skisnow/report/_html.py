@@ -1,0 +1,100 @@
+"""Assembling one self-contained HTML page: inline CSS, inline SVG figures, no scripts, no
+external resources (the report opens offline, from a USB stick, in any browser)."""
+
+from __future__ import annotations
+
+import html
+import math
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+CSS = """
+body { font-family: -apple-system, "Segoe UI", Helvetica, Arial, sans-serif; margin: 0;
+       color: #1d2327; background: #fff; line-height: 1.45; }
+header { background: #14365d; color: #fff; padding: 1.2em 2em; }
+header h1 { margin: 0 0 .2em 0; font-size: 1.6em; }
+header p { margin: 0; opacity: .85; }
+main { max-width: 1100px; margin: 0 auto; padding: 1em 2em 3em 2em; }
+h2 { border-bottom: 2px solid #14365d; padding-bottom: .2em; margin-top: 1.8em; }
+table { border-collapse: collapse; margin: .6em 0 1em 0; font-size: .92em; }
+th, td { border: 1px solid #ccd3da; padding: .25em .6em; text-align: right; }
+th { background: #eef2f6; }
+td:first-child, th:first-child { text-align: left; }
+figure { margin: 1em 0; }
+figure svg { max-width: 100%; height: auto; }
+figcaption { font-size: .88em; color: #4a5560; margin-top: .3em; }
+.note { font-size: .88em; color: #4a5560; }
+footer { font-size: .8em; color: #6a747e; margin-top: 3em; }
+"""
+
+
+@dataclass(frozen=True)
+class Table:
+    """A table: column headers and rows of cells (floats formatted with ``floatfmt``)."""
+
+    columns: Sequence[str]
+    rows: Sequence[Sequence[Any]]
+    floatfmt: str = ".3g"
+    caption: str = ""
+
+
+@dataclass(frozen=True)
+class Figure:
+    """An inline SVG figure with a caption."""
+
+    svg: str
+    caption: str = ""
+
+
+@dataclass(frozen=True)
+class Section:
+    """A titled section: paragraphs (plain text), then tables and figures in order."""
+
+    title: str
+    paragraphs: Sequence[str] = ()
+    items: Sequence[Table | Figure] = field(default_factory=tuple)
+
+
+def _cell(value: Any, floatfmt: str) -> str:
+    if value is None or (isinstance(value, float) and not math.isfinite(value)):
+        return "—"
+    if isinstance(value, float):
+        return format(value, floatfmt)
+    return html.escape(str(value))
+
+
+def _table(t: Table) -> str:
+    head = "".join(f"<th>{html.escape(c)}</th>" for c in t.columns)
+    body = "".join(
+        "<tr>" + "".join(f"<td>{_cell(v, t.floatfmt)}</td>" for v in row) + "</tr>"
+        for row in t.rows
+    )
+    cap = f"<caption>{html.escape(t.caption)}</caption>" if t.caption else ""
+    return f"<table>{cap}<thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
+
+
+def _figure(f: Figure) -> str:
+    cap = f"<figcaption>{html.escape(f.caption)}</figcaption>" if f.caption else ""
+    return f"<figure>{f.svg}{cap}</figure>"
+
+
+def render_page(title: str, subtitle: str, sections: Sequence[Section], *, footer: str = "") -> str:
+    """The whole HTML document as a string."""
+    parts = [
+        "<!DOCTYPE html>",
+        '<html lang="en"><head><meta charset="utf-8">',
+        '<meta name="viewport" content="width=device-width, initial-scale=1">',
+        f"<title>{html.escape(title)}</title><style>{CSS}</style></head><body>",
+        f"<header><h1>{html.escape(title)}</h1><p>{html.escape(subtitle)}</p></header><main>",
+    ]
+    for s in sections:
+        parts.append(f"<section><h2>{html.escape(s.title)}</h2>")
+        parts += [f"<p>{html.escape(p)}</p>" for p in s.paragraphs]
+        for item in s.items:
+            parts.append(_table(item) if isinstance(item, Table) else _figure(item))
+        parts.append("</section>")
+    if footer:
+        parts.append(f"<footer>{html.escape(footer)}</footer>")
+    parts.append("</main></body></html>")
+    return "\n".join(parts)
