@@ -81,17 +81,15 @@ def skis(json_out: bool = _JSON) -> None:
     if json_out:
         emit_json({"skis": rows})
         return
-    cols = list(rows[0])
-    table_rows = []
-    for r in rows:
-        kz = r["kick_zone_mm"]
-        table_rows.append(
-            [
-                r[c] if c != "kick_zone_mm" else ("—" if kz is None else f"{kz[0]:g}..{kz[1]:g}")
-                for c in cols
-            ]
-        )
-    print_table("Shipped virtual skis", cols, table_rows)
+
+    def cell(value: Any) -> Any:
+        if isinstance(value, list):
+            return f"{value[0]:g} .. {value[1]:g}"
+        return value
+
+    keys = [k for k in rows[0] if k != "ski"]
+    table_rows = [[k, *[cell(r[k]) for r in rows]] for k in keys]
+    print_table("Shipped virtual skis", ["", *[r["ski"] for r in rows]], table_rows, floatfmt=".4g")
 
 
 @app.command()
@@ -163,7 +161,7 @@ def print_metrics_table(docs: list[dict[str, Any]], title: str) -> None:
     """Render metrics documents as one table: a row per metric, a column per ski."""
     keys = [k for k in docs[0] if k != "ski"]
     rows = [[k, *[d[k] for d in docs]] for k in keys]
-    print_table(title, ["metric", *[d["ski"] for d in docs]], rows)
+    print_table(title, ["metric", *[d["ski"] for d in docs]], rows, floatfmt=".4g")
 
 
 @app.command()
