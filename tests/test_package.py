@@ -31,3 +31,22 @@ def test_cli_unknown_command_is_an_error_not_a_traceback(
 ) -> None:
     assert main(["no-such-command"]) != 0
     assert "Traceback" not in capsys.readouterr().err
+
+
+@pytest.mark.parametrize(
+    ("value", "text"),
+    [
+        (2000.0, "2000"),
+        (1860.0, "1860"),
+        (7.38, "7.38"),
+        (0.0874, "0.0874"),
+        (0.0, "0"),
+        (-120.0, "-120"),
+        (1.5e-5, "1.500e-05"),
+        (2.5e7, "2.500e+07"),
+    ],
+)
+def test_table_numbers_are_plain(value: float, text: str) -> None:
+    from skisnow.cli._render import format_number
+
+    assert format_number(value) == text
