@@ -128,7 +128,12 @@ def figure_svg(fig: Figure) -> str:
     with style():
         fig.savefig(buf, format="svg", metadata=_metadata("svg"))
     text = buf.getvalue()
-    return text[text.index("<svg") :]  # drop the XML prolog and DOCTYPE for inline use
+    text = text[text.index("<svg") :]  # drop the XML prolog and DOCTYPE for inline use
+    # drop the RDF metadata block (its namespace URLs are noise in an offline page)
+    start, end = text.find("<metadata>"), text.find("</metadata>")
+    if start >= 0 and end > start:
+        text = text[:start] + text[end + len("</metadata>") :]
+    return text
 
 
 def figure_png_base64(fig: Figure, *, dpi: float = 110) -> str:

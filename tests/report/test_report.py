@@ -1,0 +1,119 @@
+"""The HTML report: self-contained (no scripts, no external resources), its numbers are the
+solver's, and it renders in headless Chromium (Debian's ``chromium``) with no console message.
+
+The maps come from a small sweep with the analytic chunk function (``_hertz_chunk.py``) so the
+test stays fast; the metrics and the standard-load zones are the real ones.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import shutil
+import subprocess
+from pathlib import Path
+
+import numpy as np
+import pytest
+from _hertz_chunk import hertz_chunk
+
+from skisnow.sweep import SweepSpec, open_sweep, run_sweep
+
+CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")
+SKI = "skate"
+
+
+@pytest.fixture(scope="module")
+def report(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    from skisnow.report import write_report
+
+    out = tmp_path_factory.mktemp("report")
+    spec = SweepSpec(
+        skis=(SKI,), masses=np.arange(5.0, 131.0, 25.0), load_positions=(-0.12,),
+        snow_moduli=(20e6, 200e6, 400e6),
+    )  # fmt: skip
+    run_sweep(spec, out / "maps.zarr", chunk_function=hertz_chunk, workers=0)
+    return write_report(
+        SKI, out_dir=out, dataset=open_sweep(out / "maps.zarr"), profile_source="beam",
+        n_points=1024, snows=(100e6, 400e6),
+    )  # fmt: skip
+
+
+def test_report_is_self_contained(report: Path) -> None:
+    text = report.read_text(encoding="utf-8")
+    assert report.name == "skate_report.html"
+    assert "<script" not in text.lower() and "<link" not in text.lower()
+    # every src/href points inside the document (data: or #), never to a network or a file
+    for ref in re.findall(r'(?:src|href)\s*=\s*"([^"]*)"', text):
+        assert ref.startswith(("data:", "#")), ref
+    # no URL at all but the SVG/XLink namespace names (identifiers, never fetched)
+    assert re.findall(r"https?://(?!www\.w3\.org/)", text) == []
+    for title in ("practitioner metrics", "Contact at the standard loads", "Maps over load"):
+        assert title in text
+    assert text.count("<svg") >= 3  # area map, pressure map, load share
+
+
+def test_report_numbers_are_the_solvers(report: Path) -> None:
+    from skisnow.sweep._point import solve_point
+
+    spec = SweepSpec(skis=(SKI,), masses=(60.0,), load_positions=(-0.12,),
+                     snow_moduli=(100e6,), profile_source="beam", n_points=1024)  # fmt: skip
+    _, zones = solve_point(spec, SKI, 60.0, -0.12, 100e6)
+    text = report.read_text(encoding="utf-8")
+    row = re.search(r"<tr><td>full \(60 kg\)</td><td>100</td><td>rear</td><td>([^<]+)</td>", text)
+    assert row is not None
+    assert float(row.group(1)) == pytest.approx(zones.rear.length * 1e3, rel=5e-3)  # 3 digits
+
+
+def _chromium(args: list[str], tmp: Path) -> subprocess.CompletedProcess[str]:
+    assert CHROMIUM is not None
+    return subprocess.run(
+        [
+            CHROMIUM, "--headless", "--no-sandbox", "--disable-gpu",
+            "--disable-background-networking", "--disable-component-update", "--disable-sync",
+            "--no-first-run", f"--user-data-dir={tmp / 'chromium-profile'}",
+            "--enable-logging=stderr", "--v=0", *args,
+        ],
+        capture_output=True, text=True, timeout=120, check=False,
+    )  # fmt: skip
+
+
+def _console_messages(stderr: str) -> list[str]:
+    """Console messages of the page (Chromium logs each as ``...:CONSOLE...] "text"``)."""
+    return [line for line in stderr.splitlines() if ":CONSOLE" in line]
+
+
+def _need_chromium() -> None:
+    if CHROMIUM is None:
+        if os.environ.get("CI"):
+            pytest.fail("chromium is missing in CI (.ci/run installs Debian's chromium)")
+        pytest.skip("headless Chromium not installed (apt-get install chromium); .ci/run does it")
+
+
+def test_console_detector_catches_errors(tmp_path: Path) -> None:
+    """The check below can fail: a page that logs an error is caught."""
+    _need_chromium()
+    bad = tmp_path / "bad.html"
+    bad.write_text(
+        '<!DOCTYPE html><html><body><script>console.error("boom")</script></body></html>'
+    )
+    run = _chromium(["--dump-dom", bad.as_uri()], tmp_path)
+    assert any("boom" in m for m in _console_messages(run.stderr)), run.stderr[-2000:]
+
+
+def test_report_renders_in_headless_chromium(report: Path, tmp_path: Path) -> None:
+    _need_chromium()
+    shot = report.with_name("skate_report_screenshot.png")
+    run = _chromium(
+        ["--hide-scrollbars", "--window-size=1200,3000", f"--screenshot={shot}", report.as_uri()],
+        tmp_path,
+    )
+    assert run.returncode == 0, run.stderr[-2000:]
+    assert _console_messages(run.stderr) == []
+    from matplotlib.image import imread
+
+    pixels = imread(shot)
+    assert pixels.shape[:2] == (3000, 1200)
+    assert pixels[..., :3].std() > 0.05  # not a blank page: header, tables and figures drawn
+    dom = _chromium(["--dump-dom", report.as_uri()], tmp_path).stdout
+    assert dom.count("<svg") >= 3 and "Contact at the standard loads" in dom
