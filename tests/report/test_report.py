@@ -85,8 +85,8 @@ def _console_messages(stderr: str) -> list[str]:
 
 def _need_chromium() -> None:
     if CHROMIUM is None:
-        if os.environ.get("CI"):
-            pytest.fail("chromium is missing in CI (.ci/run installs Debian's chromium)")
+        if os.environ.get("CI") and shutil.which("apt-get"):
+            pytest.fail("chromium is missing in CI although apt is there (.ci/run installs it)")
         pytest.skip("headless Chromium not installed (apt-get install chromium); .ci/run does it")
 
 
