@@ -72,7 +72,7 @@ def _standard_loads(
     snows: Sequence[float],
     profile_source: str,
     n_points: int,
-) -> tuple[Section, list[tuple[float, float, Any]]]:
+) -> tuple[Section, list[tuple[float, float, Any, Any]]]:
     from skisnow.sweep import SweepSpec
     from skisnow.sweep._point import solve_point
 
@@ -90,7 +90,7 @@ def _standard_loads(
     for m, label in zip(masses, ("half", "full"), strict=True):
         for e in spec.snow_moduli:
             solution, zones = solve_point(spec, ski, m, load_position, e)
-            solutions.append((m, e, solution))
+            solutions.append((m, e, solution, zones))
             for zname in ("rear", "middle", "front"):
                 z = zones[zname]
                 if z.patches == 0:
@@ -137,7 +137,7 @@ def _standard_loads(
     return section, solutions
 
 
-def _contact_figures(ski: str, solutions: list[tuple[float, float, Any]]) -> list[Figure]:
+def _contact_figures(ski: str, solutions: list[tuple[float, float, Any, Any]]) -> list[Figure]:
     """Contact pictures (profile, pressure, deformed snow) at the standard loads, if the contact
     area's plotting module is available."""
     try:
@@ -147,11 +147,11 @@ def _contact_figures(ski: str, solutions: list[tuple[float, float, Any]]) -> lis
     from skisnow.plot._style import figure_svg
 
     figures = []
-    pick = {(m, e) for m, e, _ in solutions if np.isclose(e, 100e6) or np.isclose(e, 400e6)}
-    for m, e, sol in solutions:
+    pick = {(m, e) for m, e, _, _ in solutions if np.isclose(e, 100e6) or np.isclose(e, 400e6)}
+    for m, e, sol, zones in solutions:
         if (m, e) not in pick:
             continue
-        fig = plot_contact(sol, title=f"{ski}: m = {m:g} kg, E_counter = {e / 1e6:g} MPa")
+        fig = plot_contact(sol, zones, title=f"{ski}: m = {m:g} kg, E_counter = {e / 1e6:g} MPa")
         figures.append(Figure(figure_svg(fig), f"{ski} ski, {m:g} kg, snow {e / 1e6:g} MPa."))
     return figures
 

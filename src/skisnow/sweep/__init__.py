@@ -33,10 +33,10 @@ from skisnow.sweep._store import VARIABLES, open_sweep, read_spec, save_netcdf
 
 
 def __getattr__(name: str):  # the physics chunk function imports the solvers only when asked
-    if name == "contact_chunk":
-        from skisnow.sweep._point import contact_chunk
+    if name in ("contact_chunk", "solve_point"):
+        from skisnow.sweep import _point
 
-        return contact_chunk
+        return getattr(_point, name)
     raise AttributeError(name)
 
 
@@ -59,4 +59,5 @@ __all__ = [
     "read_spec",
     "run_sweep",
     "save_netcdf",
+    "solve_point",
 ]
