@@ -9,10 +9,12 @@ rotate about the load point, is pressed into an elastic half-space of equivalent
   'moment', 'load', 'displacement');
 * :func:`contact_zones` → :class:`ZoneMetrics` (rear / middle / front / total, Breitschädel);
 * :mod:`skisnow.contact.reference` — Hertz line and sphere, flat punch;
+* files: :func:`read_profile` (CSV ``x_mm,height_mm``), :func:`write_fields`, :func:`fields_table`;
 * the half-space kernels and FFT convolution in :mod:`skisnow.contact._kernels`.
 """
 
 from skisnow.contact import reference
+from skisnow.contact._io import fields_table, read_profile, write_fields
 from skisnow.contact._kernels import (
     Convolution,
     line_convolution,
@@ -53,9 +55,11 @@ __all__ = [
     "contact_modulus",
     "contact_zones",
     "effective_modulus",
+    "fields_table",
     "line_convolution",
     "line_kernel",
     "patches",
+    "read_profile",
     "reference",
     "snow",
     "solve_contact",
@@ -63,4 +67,5 @@ __all__ = [
     "strip_kernel",
     "surface_convolution",
     "surface_kernel",
+    "write_fields",
 ]

@@ -1,0 +1,109 @@
+"""Files of the apparent contact: rigid profiles in, pressure/gap fields out (field units).
+
+* :func:`read_profile` — a CSV with columns ``x_mm,height_mm`` (a rigid loaded camber profile,
+  e.g. a measured one) → (x [m], height [m]) on a uniform grid;
+* :func:`fields_table` / :func:`write_fields` — ``x_mm,pressure_kpa,gap_um,snow_displacement_um``
+  along the ski, so that anyone can check the balance laws (Σ p·w·dx = m·g).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from skisnow._errors import FileFormatError
+from skisnow.contact._solver import ContactSolution
+
+__all__ = ["fields_table", "read_profile", "write_fields"]
+
+PROFILE_COLUMNS = ("x_mm", "height_mm")
+FIELD_COLUMNS = ("x_mm", "pressure_kpa", "gap_um", "snow_displacement_um")
+
+
+def read_profile(path: str | Path, *, resample: bool = True) -> tuple[np.ndarray, np.ndarray]:
+    """Read a rigid profile CSV with columns ``x_mm,height_mm`` → (x [m], height [m]).
+
+    Rows must have finite numbers and strictly increasing ``x_mm`` (at least 8 rows). The
+    half-space solver needs a uniform grid: an irregular ``x_mm`` is resampled linearly onto a
+    uniform grid with the same number of points when ``resample`` (else an error).
+
+    Raises
+    ------
+    FileFormatError
+        Missing file or columns, non-numeric or non-finite cells (with row and column),
+        non-increasing x.
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise FileFormatError(f"{path}: no such profile file")
+    try:
+        table = pd.read_csv(path, comment="#")
+    except Exception as exc:  # pandas raises many kinds; report one clear error
+        raise FileFormatError(f"{path}: cannot be read as CSV ({exc})") from None
+    missing = [c for c in PROFILE_COLUMNS if c not in table.columns]
+    if missing:
+        raise FileFormatError(
+            f"{path}: missing column(s) {', '.join(missing)}; a profile needs columns "
+            f"x_mm,height_mm (found: {', '.join(map(str, table.columns)) or 'none'})"
+        )
+    values = {}
+    for col in PROFILE_COLUMNS:
+        v = pd.to_numeric(table[col], errors="coerce").to_numpy(dtype=float)
+        bad = np.flatnonzero(~np.isfinite(v))
+        if bad.size:
+            row = int(bad[0]) + 2  # 1-based, after the header line
+            raise FileFormatError(
+                f"{path}: row {row}, column {col}: {table[col].iloc[bad[0]]!r} is not a finite "
+                "number"
+            )
+        values[col] = v
+    x, h = values["x_mm"] * 1e-3, values["height_mm"] * 1e-3
+    if x.size < 8:
+        raise FileFormatError(f"{path}: a profile needs at least 8 rows, found {x.size}")
+    d = np.diff(x)
+    if np.any(d <= 0):
+        row = int(np.flatnonzero(d <= 0)[0]) + 3
+        raise FileFormatError(f"{path}: row {row}: x_mm must increase strictly")
+    if np.max(np.abs(d - d.mean())) > 1e-6 * d.mean():
+        if not resample:
+            raise FileFormatError(f"{path}: x_mm is not uniformly spaced")
+        xu = np.linspace(x[0], x[-1], x.size)
+        h = np.interp(xu, x, h)
+        x = xu
+    return x, h
+
+
+def fields_table(solution: ContactSolution) -> pd.DataFrame:
+    """The fields along the ski in field units.
+
+    Strip/line: the values at each station. Surface: ``pressure_kpa`` is the width-averaged
+    pressure q(x)/w(x) (so that Σ pressure·w·dx = W still holds), ``gap_um`` the smallest gap
+    across the width and ``snow_displacement_um`` the width-averaged displacement.
+    """
+    s = solution
+    if s.pressure.ndim == 2:
+        fp = s.footprint
+        nfp = fp.sum(axis=1)
+        p = np.where(fp, s.pressure, 0.0).sum(axis=1) / nfp
+        gap = np.where(fp, s.gap, np.inf).min(axis=1)
+        u = np.where(fp, s.displacement, 0.0).sum(axis=1) / nfp
+    else:
+        p, gap, u = s.pressure, s.gap, s.displacement
+    return pd.DataFrame(
+        {
+            "x_mm": s.x * 1e3,
+            "pressure_kpa": p * 1e-3,
+            "gap_um": gap * 1e6,
+            "snow_displacement_um": u * 1e6,
+        }
+    )
+
+
+def write_fields(solution: ContactSolution, path: str | Path) -> Path:
+    """Write :func:`fields_table` as CSV (full float precision)."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fields_table(solution).to_csv(path, index=False, float_format="%.10g")
+    return path
