@@ -203,3 +203,34 @@ def test_convergence_error_on_request() -> None:
     assert info.value.result is not None and not info.value.result.converged
     sol = solve_beam(ski, mass=60.0, load_position=-0.07, max_iterations=1, raise_on_failure=False)
     assert not sol.converged
+
+
+def test_random_skis_satisfy_balance_and_complementarity() -> None:
+    # Seeded random skis (rough tabulated camber up to 10 mm, EI from 50 to 20000 N m²) and
+    # loads: the solver must converge and meet both balances to 1e-9 and the sign conditions.
+    rng = np.random.default_rng(2024)
+    for _ in range(25):
+        length = rng.uniform(1.5, 2.2)
+        x_tail = -rng.uniform(0.4, 0.6) * length
+        x_tip = x_tail + length
+        kx = np.linspace(x_tail, x_tip, int(rng.integers(3, 30)))
+        cx = np.linspace(x_tail, x_tip, int(rng.integers(5, 80)))
+        ski = Ski(
+            name="random",
+            kind="skate",
+            x_tail=x_tail,
+            x_tip=x_tip,
+            width=0.044,
+            stiffness_x=kx,
+            stiffness_values=np.exp(rng.uniform(np.log(50.0), np.log(2e4), kx.size)),
+            camber_x=cx,
+            camber_values=rng.uniform(0.0, float(rng.choice([1e-5, 1e-3, 1e-2])), cx.size),
+        )
+        mass = rng.uniform(1.0, 150.0)
+        pos = rng.uniform(x_tail + 0.1, x_tip - 0.1)
+        sol = solve_beam(ski, mass=mass, load_position=pos, n_elements=200)
+        force = mass * STANDARD_GRAVITY
+        assert sol.converged and sol.residual < 1e-9
+        assert np.sum(sol.reactions) == pytest.approx(force, rel=1e-9)
+        assert np.sum(sol.reactions * sol.x) == pytest.approx(force * pos, abs=1e-9 * force)
+        assert np.all(sol.height >= 0) and np.all(sol.reactions >= 0)

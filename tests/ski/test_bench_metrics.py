@@ -124,7 +124,19 @@ def test_contact_lengths_and_patches_of_a_synthetic_profile() -> None:
     assert lengths["front"] == pytest.approx(0.050)
     assert lengths["total"] == pytest.approx(0.160)
     assert len(contact_patches(x, h)) == 4
-    assert contact_lengths(x, h)["middle"] == 0.0  # no kick zone: split at the balance point
+    assert contact_lengths(x, h)["middle"] == 0.0  # no kick zone: no middle zone
+
+
+def test_skate_contact_split_at_the_arch_top() -> None:
+    ski = get_ski("skate")
+    x = bench_grid(ski)
+    h = solve_beam(ski, mass=65.0, load_position=-0.12).sample(x)
+    lengths = contact_lengths(x, h)
+    assert lengths["rear"] > 0 and lengths["front"] > 0
+    assert lengths["rear"] + lengths["front"] == pytest.approx(lengths["total"])
+    # the front glide zone holds the two front patches, behind the hump at +0.52..+0.68 m
+    front = [p for p in contact_patches(x, h) if p[0] > 0.1]
+    assert len(front) == 2
 
 
 def test_stiffness_formula() -> None:

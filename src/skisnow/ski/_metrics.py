@@ -140,11 +140,24 @@ def contact_lengths(
     """Contact lengths [m] with Breitschädel's criterion h <= threshold, per zone.
 
     Zones: ``rear`` (x < kick start), ``middle`` (inside the kick zone), ``front`` (x > kick
-    end), ``total``. Without a kick zone (skate skis) the split is at the balance point and
-    ``middle`` is 0. Each sample stands for its cell (half-way to its neighbours).
+    end), ``total``. Without a kick zone (skate skis) ``middle`` is 0 and rear/front are split,
+    as in :func:`skisnow.contact.contact_zones`, at the top of the camber arch: the sample of
+    greatest height between the centres of the rearmost and the frontmost contact patch (at the
+    balance point if there are fewer than two patches). Each sample stands for its cell
+    (half-way to its neighbours).
     """
     xa, ha = _profile(x, height)
-    a, b = (0.0, 0.0) if kick_zone is None else kick_zone
+    if kick_zone is None:
+        patches = contact_patches(xa, ha, threshold=threshold)
+        split = 0.0
+        if len(patches) >= 2:
+            lo = 0.5 * sum(patches[0])
+            hi = 0.5 * sum(patches[-1])
+            inside = (xa >= lo) & (xa <= hi)
+            split = float(xa[inside][np.argmax(ha[inside])])
+        a = b = split
+    else:
+        a, b = kick_zone
     w = _cell_widths(xa) * (ha <= threshold)
     return {
         "rear": float(np.sum(w[xa < a])),
