@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import numpy as np
+import pandas as pd
 import pytest
 
 from skisnow import InputError
@@ -186,3 +187,13 @@ def test_camber_profile_beam() -> None:
     )
     with pytest.raises(InputError, match="source"):
         camber_profile("classic", mass=30.0, load_position=-0.12, source="magic")  # type: ignore[arg-type]
+
+
+def test_metrics_of_a_two_ski_bench_use_each_skis_kick_zone() -> None:
+    a = run_bench("classic", masses=[30, 35, 65], load_positions=[-0.08])
+    b = run_bench("skate", masses=[30, 35, 65], load_positions=[-0.08])
+    both = BenchData(table=pd.concat([a.table, b.table], ignore_index=True), metadata={})
+    with pytest.raises(InputError, match="several skis"):
+        ski_metrics(both)
+    assert ski_metrics(both, ski="classic") == ski_metrics(a)
+    assert ski_metrics(both, ski="skate") == ski_metrics(b)

@@ -301,6 +301,26 @@ def _bench_profile_at_mass(
     return x * 1e-3, ((1 - wgt) * h_lo + wgt * h_hi) * 1e-3
 
 
+def _bench_kick_zone(bench: BenchData, name: str) -> tuple[float, float] | None:
+    """Kick zone [m] of ski ``name``: from the metadata if it describes that ski (``ski`` and
+    ``kick_zone_mm``), else from the shipped ski of that name, else none."""
+    md = bench.metadata
+    if md.get("ski") == name and "kick_zone_mm" in md:
+        kz = md["kick_zone_mm"]
+        if kz is None:
+            return None
+        try:
+            a, b = (float(v) * 1e-3 for v in kz)
+        except (TypeError, ValueError):
+            raise InputError(
+                f"bench metadata kick_zone_mm must be [start, end] in mm or null, got {kz!r}"
+            ) from None
+        return a, b
+    if name in SHIPPED_SKIS:
+        return get_ski(name).kick_zone
+    return None
+
+
 @dataclass(frozen=True, kw_only=True)
 class SkiMetrics:
     """The practitioners' numbers of one ski for one body mass and load position (SI units).
@@ -400,14 +420,14 @@ def ski_metrics(
 
     From a bench, the profiles at ½ and 1 body mass are interpolated linearly between the two
     nearest bench masses at ``load_position`` (which must be one of the bench's positions) and
-    the kick zone is taken from the metadata (``kick_zone_mm``), if any.
+    the kick zone is taken from the metadata (``kick_zone_mm``) when it describes that ski, else
+    from the shipped ski of the same name, else there is none.
     """
     if not (np.isfinite(body_mass) and body_mass > 0):
         raise InputError(f"body_mass must be > 0 kg, got {body_mass}")
     if isinstance(source, BenchData):
         name = _bench_ski(source, ski)
-        kz = source.metadata.get("kick_zone_mm")
-        kick = None if kz is None else (float(kz[0]) * 1e-3, float(kz[1]) * 1e-3)
+        kick = _bench_kick_zone(source, name)
         return _metrics_from_profiles(
             name=name,
             source="bench",
