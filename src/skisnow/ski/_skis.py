@@ -269,8 +269,8 @@ def _classic() -> Ski:
             "placed 80 mm behind the balance point. Known departures: at half body weight the "
             "0.1 mm pocket is about 685 mm long, longer than the 45-55 cm of the paper test "
             "(Galanes), and the glide zones lie flatter than the paper's classic ski (50 µm "
-            "contact lengths about 300/180 mm against 28/15 mm rear/front on the stone at 30 kg, "
-            "seed paper 000, Fig. 4).\n" + _SOURCES
+            "contact lengths 292/179 mm against 28/15 mm rear/front on the stone at 30 kg, "
+            "x_m = -120 mm, seed paper 000, Fig. 4).\n" + _SOURCES
         ),
     )
 
