@@ -105,17 +105,17 @@ def test_errors_are_one_line(
     assert len(lines) == 1 and needle in lines[0] and "Traceback" not in captured.err
 
 
-@pytest.mark.slow
-def test_demo_writes_files(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
-    doc = _json(capsys, ["demo", "--out", str(tmp_path / "out"), "--json"])
+def test_ski_part_of_the_demo_writes_files(tmp_path: Path) -> None:
+    # The ski part of `skisnow demo` (issue 5 adds the contact part to the command itself).
+    from skisnow.cli._demo import run_ski_demo
+
+    doc = run_ski_demo(tmp_path / "out", progress=False)
     files = [Path(f) for f in doc["files"]]
     assert all(f.is_file() for f in files)
-    assert {f.name for f in files} >= {
-        "bench_classic.parquet",
-        "bench_skate.parquet",
-        "camber_profiles.png",
-    }
+    names = {f.name for f in files}
+    assert names >= {"bench_classic.parquet", "bench_skate.parquet", "camber_profiles.png"}
     assert [m["ski"] for m in doc["metrics"]] == ["classic", "skate"]
+    assert read_bench(tmp_path / "out" / "bench_skate.parquet").metadata["ski"] == "skate"
 
 
 def test_subprocess_smoke() -> None:
