@@ -234,3 +234,18 @@ def test_random_skis_satisfy_balance_and_complementarity() -> None:
         assert np.sum(sol.reactions) == pytest.approx(force, rel=1e-9)
         assert np.sum(sol.reactions * sol.x) == pytest.approx(force * pos, abs=1e-9 * force)
         assert np.all(sol.height >= 0) and np.all(sol.reactions >= 0)
+
+
+def test_reference_formulas_against_the_unit_load_integral() -> None:
+    # The library's beam references, checked on their own: δ = ∫ M(s) m(s) / EI ds with the
+    # bending moment M of the load and m of a unit load at the measured point.
+    force, span, ei = 120.0, 1.7, 450.0
+
+    def m_three_point(s: float) -> float:  # simply supported, centre load: M = F s / 2 (s < L/2)
+        return 0.5 * force * s if s < span / 2 else 0.5 * force * (span - s)
+
+    three = quad(lambda s: m_three_point(s) * m_three_point(s) / force / ei, 0, span,
+                 points=[span / 2])[0]  # fmt: skip
+    assert three_point_bending_deflection(force, span, ei) == pytest.approx(three, rel=1e-12)
+    cant = quad(lambda s: force * (span - s) * (span - s) / ei, 0, span)[0]
+    assert cantilever_tip_deflection(force, span, ei) == pytest.approx(cant, rel=1e-12)
