@@ -108,15 +108,12 @@ def surface_kernel(shape: tuple[int, int], dx: float, dy: float, *, modulus: flo
     nx, ny = (_count("shape[0]", shape[0]), _count("shape[1]", shape[1]))
     dx, dy = _positive("dx", dx), _positive("dy", dy)
     modulus = _positive("modulus", modulus)
-    x = _offsets(nx, dx)[:, None]
-    y = _offsets(ny, dy)[None, :]
-    a, b = dx / 2.0, dy / 2.0
-    integral = (
-        _love_primitive(x + a, y + b)
-        - _love_primitive(x - a, y + b)
-        - _love_primitive(x + a, y - b)
-        + _love_primitive(x - a, y - b)
-    )
+    # F on the (2nx) × (2ny) grid of cell corners, then the four-corner differences: each corner
+    # value is shared by four cells (4× fewer transcendental evaluations than cell by cell)
+    xc = (np.arange(2 * nx, dtype=np.float64) - nx + 0.5) * dx
+    yc = (np.arange(2 * ny, dtype=np.float64) - ny + 0.5) * dy
+    f = _love_primitive(xc[:, None], yc[None, :])
+    integral = f[1:, 1:] - f[:-1, 1:] - f[1:, :-1] + f[:-1, :-1]
     return 2.0 / (np.pi * modulus) * integral
 
 
@@ -221,6 +218,7 @@ class Convolution:
     fft_shape: tuple[int, ...]
     spectrum: np.ndarray = field(repr=False)
     workers: int = 1
+    kernel: np.ndarray | None = field(default=None, repr=False)
 
     @classmethod
     def from_kernel(
@@ -252,7 +250,9 @@ class Convolution:
         even = all(np.allclose(kernel, np.flip(kernel, axis=a)) for a in range(kernel.ndim))
         if even:
             spectrum = np.ascontiguousarray(spectrum.real)
-        return cls(shape=shape, fft_shape=fft_shape, spectrum=spectrum, workers=workers)
+        return cls(
+            shape=shape, fft_shape=fft_shape, spectrum=spectrum, workers=workers, kernel=kernel
+        )
 
     @property
     def ndim(self) -> int:
@@ -261,7 +261,7 @@ class Convolution:
 
     def __call__(self, pressure: np.ndarray) -> np.ndarray:
         """Displacement [m] at the cell centres due to ``pressure`` [Pa] (same shape)."""
-        p = np.asarray(pressure, dtype=np.float64)
+        p = np.asarray(pressure, dtype=self.spectrum.dtype)
         if p.shape[p.ndim - self.ndim :] != self.shape:
             raise InputError(
                 f"pressure has shape {p.shape}; the operator was built for grids of shape "
@@ -294,6 +294,44 @@ class Convolution:
         spec *= self.spectrum
         out = sfft.irfftn(spec, s=self.fft_shape, axes=axes, workers=self.workers)
         return out[(..., *(slice(0, n) for n in self.shape))]
+
+    def inverse(self, *, floor: float = 1e-3, single: bool = False) -> Convolution:
+        """The circulant inverse (spectrum 1/K̂, clipped below at ``floor``·max K̂).
+
+        Not the inverse of the aperiodic operator, but close to it away from the grid's edges:
+        a preconditioner (it maps displacements to pressures, like the Dirichlet-to-Neumann map).
+        """
+        spec = np.abs(self.spectrum) if np.iscomplexobj(self.spectrum) else self.spectrum
+        spec = np.maximum(spec, floor * float(np.max(spec)))
+        inv = 1.0 / spec
+        if single:  # single precision: twice as fast, and exact enough for a preconditioner
+            inv = (inv / np.max(inv)).astype(np.float32)
+        return Convolution(
+            shape=self.shape, fft_shape=self.fft_shape, spectrum=inv, workers=self.workers
+        )
+
+    def add_columns(self, out: np.ndarray, index: np.ndarray, values: np.ndarray) -> None:
+        """``out += K @ v`` for a pressure ``v`` that is non-zero only at the flat ``index`` cells.
+
+        A direct sum of kernel columns (each one a slice of :attr:`kernel`): cheaper than the
+        FFT when only a few cells carry load, e.g. the cells a solver step clipped or added.
+        ``out`` has the grid's shape.
+        """
+        if self.kernel is None:
+            raise InputError("add_columns needs the kernel (build with from_kernel)")
+        k = self.kernel
+        if self.ndim == 1:
+            (n,) = self.shape
+            for j, v in zip(index.tolist(), values.tolist(), strict=True):
+                out += v * k[n - 1 - j : 2 * n - 1 - j]
+            return
+        if self.ndim == 2:
+            nx, ny = self.shape
+            for j, v in zip(index.tolist(), values.tolist(), strict=True):
+                jx, jy = divmod(j, ny)
+                out += v * k[nx - 1 - jx : 2 * nx - 1 - jx, ny - 1 - jy : 2 * ny - 1 - jy]
+            return
+        raise InputError("add_columns supports 1D and 2D grids")
 
     @property
     def self_influence(self) -> float:

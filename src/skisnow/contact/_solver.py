@@ -21,6 +21,12 @@ gradient, generalised: the rigid *plane* δ + θ(x − x_m), fitted by least squ
 the current contact set, replaces the mean gap; the search direction and its image are projected
 the same way; after each step the two constraints are restored by multiplying p by an affine
 factor α + β(x − x_m) (β = 0 is Polonsky–Keer's load rescaling). No outer loop on θ.
+The CG is preconditioned with the circulant inverse of the half-space operator (the inverse
+Fourier symbol, in the spirit of Vollebregt 2014, J. Optim. Theory Appl. 162, "A new solver for
+the elastic normal contact problem using conjugate gradients, deflation, and an FFT-based
+preconditioner"), and u = K p is updated from K t (one FFT pair a step, plus the
+preconditioner's) while the contact set holds; a coarse-grid solution is the start on large
+surface grids.
 Plain load control (θ = 0, the mean gap) and displacement control (δ, θ given) are the same
 iteration with fewer constraints.
 """
@@ -292,6 +298,10 @@ def _start(
     return p
 
 
+#: at most this many cells changed by a step are added to u = K p by direct kernel columns
+_DIRECT_COLUMNS = 12
+
+
 def _pk(
     conv: Convolution,
     h: np.ndarray,
@@ -304,6 +314,7 @@ def _pk(
     p0: np.ndarray,
     tol: float,
     max_iter: int,
+    precondition: bool = False,
 ) -> tuple[np.ndarray, np.ndarray, float, float, int, list[float], bool, str, int]:
     """Polonsky–Keer constrained CG on the footprint cells (flat vectors).
 
@@ -317,21 +328,32 @@ def _pk(
     shape = conv.shape
     n_conv = 0
 
+    inv = conv.inverse() if precondition else None
+
+    def add_direct(out: np.ndarray, cells: np.ndarray, values: np.ndarray) -> None:
+        """out += K Δ for Δ on a few (flat footprint) cells, by kernel columns."""
+        if idx is None:
+            conv.add_columns(out.reshape(shape), cells, values)
+        else:
+            full = np.zeros(shape)
+            conv.add_columns(full, idx[cells], values)
+            out += full.ravel()[idx]
+
     if idx is None:
 
-        def apply(v: np.ndarray) -> np.ndarray:
+        def apply(v: np.ndarray, op: Convolution = conv) -> np.ndarray:
             nonlocal n_conv
             n_conv += 1
-            return conv(v.reshape(shape)).ravel()
+            return op(v.reshape(shape)).ravel()
 
     else:
         grid = np.zeros(int(np.prod(shape)))
 
-        def apply(v: np.ndarray) -> np.ndarray:
+        def apply(v: np.ndarray, op: Convolution = conv) -> np.ndarray:
             nonlocal n_conv
             n_conv += 1
             grid[idx] = v
-            return conv(grid.reshape(shape)).ravel()[idx]
+            return op(grid.reshape(shape)).ravel()[idx]
 
     moment = control == "moment"
     constrained = control in ("moment", "load")
@@ -391,13 +413,24 @@ def _pk(
             if b_ != 0.0:
                 g -= b_ * xi
         gm = g * m
-        big_g = float(_dot(gm, gm))
+        if inv is not None:
+            z = apply(gm, inv)
+            z *= m
+            if constrained:
+                za, zb = fit(z, cnt, sx, sxx)
+                z -= za * m
+                if zb != 0.0:
+                    z -= zb * xm_
+            big_g = float(_dot(gm, z))
+        else:
+            z = gm
+            big_g = float(_dot(gm, gm))
         if conj and g_old > 0:
             t *= big_g / g_old
             t *= m
-            t += gm
+            t += z
         else:
-            t[:] = gm
+            t[:] = z
         g_old = big_g
         if constrained:
             # keep t in the constraint space on the contact set: then p − τt satisfies the
@@ -469,8 +502,14 @@ def _pk(
             r *= tau
             u -= r
             if any_changed:
-                delta = np.where(changed, p / scale - trial, 0.0)
-                u += apply(delta)
+                cells = np.flatnonzero(changed)
+                delta = p[cells] / scale - trial[cells]
+                if cells.size <= _DIRECT_COLUMNS:
+                    add_direct(u, cells, delta)
+                else:
+                    full_delta = np.zeros_like(p)
+                    full_delta[cells] = delta
+                    u += apply(full_delta)
             if scale != 1.0:
                 u *= scale
         norm = float(p.sum())
@@ -519,6 +558,7 @@ def solve_contact(
     reference_length: float = 1.0,
     workers: int | None = None,
     multilevel: bool | None = None,
+    precondition: bool = True,
     raise_on_failure: bool = False,
 ) -> ContactSolution:
     """Press a rigid profile into an elastic half-space with force and moment balance (eq. 3).
@@ -570,6 +610,10 @@ def solve_contact(
         displacement control).
     workers
         FFT threads (default: all cores).
+    precondition
+        Precondition the conjugate gradient with the circulant inverse of the half-space operator
+        (its Fourier symbol inverted, restricted to the contact set and projected on the
+        constraints): 3–4× fewer iterations at the price of one more FFT pair per iteration.
     multilevel
         Without ``initial_pressure``, start from the solution on a grid twice as coarse
         (recursively, down to 128² cells): fewer fine-grid iterations. Default: on for the
@@ -741,6 +785,7 @@ def solve_contact(
         p0=p0,
         tol=float(tol),
         max_iter=int(max_iter),
+        precondition=precondition,
     )
     if control == "displacement":
         a, b = float(translation), float(rotation)  # type: ignore[arg-type]
