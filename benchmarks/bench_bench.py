@@ -51,10 +51,10 @@ def main() -> None:
         "rows",
         "iters warm mean/max",
         "iters cold mean/max",
-        "solve warm [s]",
-        "solve cold [s]",
-        "run_bench best [s]",
-        "per profile [ms]",
+        "solve warm (s)",
+        "solve cold (s)",
+        "run_bench best (s)",
+        "per profile (ms)",
     ):
         table.add_column(col, justify="right")
     total = 0.0
