@@ -10,7 +10,7 @@ import typer
 from skisnow.cli._app import app
 from skisnow.cli._render import console, emit_json
 
-__all__ = ["run_ski_demo"]
+__all__ = ["run_contact_demo", "run_ski_demo"]
 
 
 def run_ski_demo(out: Path, *, progress: bool = True) -> dict[str, Any]:
@@ -43,19 +43,166 @@ def run_ski_demo(out: Path, *, progress: bool = True) -> dict[str, Any]:
     return {"output_dir": str(out), "files": files, "metrics": docs}
 
 
+def network_or_beam() -> tuple[str, str]:
+    """``('network', '')`` when both shipped skis have their pretrained network, else
+    ``('beam', reason)``."""
+    from skisnow.ski import SHIPPED_SKIS
+
+    try:
+        from skisnow.ski import shipped_network
+
+        for name in SHIPPED_SKIS:
+            shipped_network(name)
+    except Exception as exc:  # no network shipped yet / cannot load: say so, use the beam
+        return "beam", f"shipped networks unavailable ({exc}); profiles from the beam"
+    return "network", ""
+
+
+#: The load cases of Kalliorinne et al. (2023), Figures 4–7: (figure, ski, m [kg], x_m [mm],
+#: E_counter [MPa]).
+PAPER_CASES: tuple[tuple[str, str, float, float, float], ...] = (
+    ("fig4", "classic", 30, -120, 70_000),
+    ("fig4", "skate", 30, -120, 70_000),
+    ("fig5", "skate", 30, -120, 100),
+    ("fig5", "skate", 60, -120, 100),
+    ("fig6", "classic", 60, -210, 100),
+    ("fig6", "classic", 60, -70, 100),
+    ("fig7", "classic", 30, -120, 50),
+    ("fig7", "classic", 30, -120, 200),
+)
+
+
+def run_contact_demo(
+    out: Path,
+    *,
+    profile_source: str,
+    workers: int | None = 0,
+    n_points: int = 1024,
+    progress: bool = True,
+) -> dict[str, Any]:
+    """The contact part of the demo: the analogues of the paper's Figures 4–7 (contact pictures),
+    Figures 8–9 (maps of a sweep over load and snow, both skis) and one HTML report per ski.
+
+    The maps use a demo grid (5–130 kg in 5 kg steps × 20–400 MPa in 40 MPa steps at
+    x_m = −120 mm); ``skisnow sweep`` and ``examples/fig8_9_maps.py`` run the paper's full grid.
+    """
+    import numpy as np
+
+    from skisnow.plot._contact import plot_contact
+    from skisnow.plot._maps import plot_load_share, plot_zone_map
+    from skisnow.plot._style import save_figure
+    from skisnow.report import write_report
+    from skisnow.ski import SHIPPED_SKIS
+    from skisnow.sweep import SweepSpec, open_sweep, run_sweep, solve_point
+
+    out.mkdir(parents=True, exist_ok=True)
+    files: list[str] = []
+    cases = []
+    for fig_no, ski, m, x_mm, e_mpa in PAPER_CASES:
+        spec = SweepSpec(
+            skis=(ski,), masses=(m,), load_positions=(x_mm * 1e-3,), snow_moduli=(e_mpa * 1e6,),
+            profile_source=profile_source, n_points=n_points,
+        )  # fmt: skip
+        solution, zones = solve_point(spec, ski, m, x_mm * 1e-3, e_mpa * 1e6)
+        stem = f"{fig_no}_{ski}_{m:g}kg_x{x_mm:g}mm_{e_mpa:g}MPa"
+        title = f"{ski}: m = {m:g} kg at x_m = {x_mm:g} mm, E_counter = {e_mpa:g} MPa"
+        files += [str(p) for p in save_figure(plot_contact(solution, zones, title=title),
+                                              out / stem)]  # fmt: skip
+        cases.append(
+            {
+                "figure": fig_no, "ski": ski, "mass_kg": m, "load_position_mm": x_mm,
+                "snow_modulus_mpa": e_mpa, "converged": solution.converged,
+                **{f"{z}_length_mm": zones[z].length * 1e3 for z in ("rear", "middle", "front")},
+                **{f"{z}_mean_pressure_kpa": zones[z].mean_pressure / 1e3
+                   for z in ("rear", "middle", "front")},
+            }
+        )  # fmt: skip
+
+    spec = SweepSpec(
+        skis=tuple(SHIPPED_SKIS), masses=np.arange(5.0, 131.0, 5.0), load_positions=(-0.120,),
+        snow_moduli=np.arange(20.0, 401.0, 40.0) * 1e6, profile_source=profile_source,
+        n_points=n_points,
+    )  # fmt: skip
+    store = out / f"maps_{profile_source}.zarr"
+    if progress:
+        from skisnow.cli._sweep import _progress
+
+        with _progress("sweep (Figures 8-9)") as bar:
+            task = bar.add_task("chunks", total=len(spec.chunks()))
+            run = run_sweep(spec, store, workers=workers,
+                            on_progress=lambda d, t, k: bar.update(task, advance=1))  # fmt: skip
+    else:
+        run = run_sweep(spec, store, workers=workers)
+    ds = open_sweep(store)
+    files.append(str(store))
+    for ski in spec.skis:
+        for variable, name in (("area_cm2", "fig8_area"), ("mean_pressure_kpa", "fig9_pressure")):
+            fig = plot_zone_map(ds, variable=variable, ski=ski, load_position_mm=-120.0)
+            files += [str(p) for p in save_figure(fig, out / f"{name}_{ski}")]
+        fig = plot_load_share(ds, ski=ski, load_position_mm=-120.0)
+        files += [str(p) for p in save_figure(fig, out / f"load_share_{ski}")]
+        report = write_report(
+            ski, out_dir=out, dataset=ds, profile_source=profile_source, n_points=n_points
+        )
+        files.append(str(report))
+    return {
+        "profile_source": profile_source,
+        "cases": cases,
+        "sweep": {
+            "store": str(store), "points": spec.n_points_total,
+            "chunks_computed": len(run.computed), "chunks_reused": len(run.skipped),
+            "wall_time_s": run.wall_time,
+        },
+        "files": files,
+    }  # fmt: skip
+
+
 @app.command()
 def demo(
     out: Annotated[Path, typer.Option("--out", help="Output directory.")] = Path("skisnow-output"),
     json_out: bool = typer.Option(False, "--json", help="Print one JSON document, nothing else."),
+    workers: Annotated[
+        int, typer.Option("--workers", help="Dask workers for the maps' sweep (0: in process).")
+    ] = 0,
 ) -> None:
     """Run the end-to-end demo on the shipped skis and say where the files went."""
+    import time
+
     from skisnow.cli._ski import print_metrics_table
 
-    doc = run_ski_demo(out)
+    t0 = time.perf_counter()
+    doc = run_ski_demo(out, progress=not json_out)
+    source, note = network_or_beam()
+    contact = run_contact_demo(out, profile_source=source, workers=workers, progress=not json_out)
+    doc["contact"] = contact
+    doc["files"] = doc["files"] + contact["files"]
+    doc["note"] = note
+    doc["wall_time_s"] = time.perf_counter() - t0
     if json_out:
         emit_json(doc)
         return
     print_metrics_table(doc["metrics"], "Shipped skis on the virtual bench (65 kg skier)")
-    console.print(f"Files written to {doc['output_dir']}/:")
+    rows = [
+        (c["figure"], c["ski"], c["mass_kg"], c["load_position_mm"], c["snow_modulus_mpa"],
+         c["rear_length_mm"], c["front_length_mm"], c["rear_mean_pressure_kpa"],
+         c["front_mean_pressure_kpa"])
+        for c in contact["cases"]
+    ]  # fmt: skip
+    from skisnow.cli._render import print_table
+
+    print_table(
+        f"The paper's load cases (Figures 4-7), profiles from the {source}",
+        ["figure", "ski", "m [kg]", "x_m [mm]", "E [MPa]", "rear [mm]", "front [mm]",
+         "rear p [kPa]", "front p [kPa]"],
+        rows,
+    )  # fmt: skip
+    if note:
+        console.print(f"note: {note}")
+    sw = contact["sweep"]
+    console.print(
+        f"Maps sweep: {sw['points']} contact solves, {sw['chunks_computed']} chunks computed, "
+        f"{sw['chunks_reused']} reused, {sw['wall_time_s']:.1f} s -> {sw['store']}"
+    )
+    console.print(f"Files written to {doc['output_dir']}/ in {doc['wall_time_s']:.1f} s:")
     for f in doc["files"]:
         console.print(f"  {f}")

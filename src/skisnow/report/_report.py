@@ -147,7 +147,10 @@ def _contact_figures(ski: str, solutions: list[tuple[float, float, Any, Any]]) -
     from skisnow.plot._style import figure_svg
 
     figures = []
-    pick = {(m, e) for m, e, _, _ in solutions if np.isclose(e, 100e6) or np.isclose(e, 400e6)}
+    # half and full body weight on the median snow of the table
+    snows = sorted({e for _, e, _, _ in solutions})
+    e_pick = snows[(len(snows) - 1) // 2]
+    pick = {(m, e) for m, e, _, _ in solutions if e == e_pick}
     for m, e, sol, zones in solutions:
         if (m, e) not in pick:
             continue
