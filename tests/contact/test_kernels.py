@@ -112,3 +112,19 @@ def test_line_convolution_and_errors() -> None:
         surface_kernel((4, 4), 1e-3, 1e-3, modulus=-1.0)
     with pytest.raises(InputError, match="kernel has shape"):
         Convolution.from_kernel(np.ones(5), (4,))
+
+
+@pytest.mark.parametrize("shape", [(40,), (12, 7)])
+def test_direct_columns_equal_the_fft(shape: tuple[int, ...]) -> None:
+    if len(shape) == 1:
+        conv = strip_convolution(shape[0], 1e-3, 0.044, modulus=E)
+    else:
+        conv = surface_convolution(shape, 1e-3, 2e-3, modulus=E)
+    rng = np.random.default_rng(3)
+    cells = rng.choice(int(np.prod(shape)), size=5, replace=False)
+    values = rng.random(5)
+    p = np.zeros(int(np.prod(shape)))
+    p[cells] = values
+    out = np.zeros(shape)
+    conv.add_columns(out, cells, values)
+    assert np.allclose(out, conv(p.reshape(shape)), rtol=0, atol=1e-14 * np.abs(out).max())
