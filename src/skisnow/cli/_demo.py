@@ -78,13 +78,16 @@ def run_contact_demo(
     profile_source: str,
     workers: int | None = 0,
     n_points: int = 1024,
+    masses: Any = None,
+    snow_moduli: Any = None,
     progress: bool = True,
 ) -> dict[str, Any]:
     """The contact part of the demo: the analogues of the paper's Figures 4–7 (contact pictures),
     Figures 8–9 (maps of a sweep over load and snow, both skis) and one HTML report per ski.
 
-    The maps use a demo grid (5–130 kg in 5 kg steps × 20–400 MPa in 40 MPa steps at
-    x_m = −120 mm); ``skisnow sweep`` and ``examples/fig8_9_maps.py`` run the paper's full grid.
+    The maps use a demo grid (``masses`` [kg], default 5–130 kg in 5 kg steps × ``snow_moduli``
+    [Pa], default 20–400 MPa in 40 MPa steps, at x_m = −120 mm) and ``n_points`` stations;
+    ``skisnow sweep`` and ``examples/fig8_9_maps.py`` run the paper's full grid.
     """
     import numpy as np
 
@@ -119,8 +122,11 @@ def run_contact_demo(
         )  # fmt: skip
 
     spec = SweepSpec(
-        skis=tuple(SHIPPED_SKIS), masses=np.arange(5.0, 131.0, 5.0), load_positions=(-0.120,),
-        snow_moduli=np.arange(20.0, 401.0, 40.0) * 1e6, profile_source=profile_source,
+        skis=tuple(SHIPPED_SKIS),
+        masses=np.arange(5.0, 131.0, 5.0) if masses is None else masses,
+        load_positions=(-0.120,),
+        snow_moduli=np.arange(20.0, 401.0, 40.0) * 1e6 if snow_moduli is None else snow_moduli,
+        profile_source=profile_source,
         n_points=n_points,
     )  # fmt: skip
     store = out / f"maps_{profile_source}.zarr"

@@ -88,14 +88,20 @@ def sweep(
         n_points=n_points,
     )
     n_chunks = len(spec.chunks())
-    with _progress(f"sweep {out.name}") as progress:
-        task = progress.add_task("chunks", total=None)
+    bar = _progress(f"sweep {out.name}")
+    task: list = []  # the bar starts with the first finished chunk (not before the store checks)
 
-        def on_progress(done: int, total: int, key: tuple[int, int, int]) -> None:
-            progress.update(task, completed=done, total=total)
+    def on_progress(done: int, total: int, key: tuple[int, int, int]) -> None:
+        if not task:
+            bar.start()
+            task.append(bar.add_task("chunks", total=total))
+        bar.update(task[0], completed=done, total=total)
 
+    try:
         run = run_sweep(spec, out, scheduler=scheduler, workers=workers, on_progress=on_progress)
-        progress.update(task, total=max(len(run.computed), 1), completed=max(len(run.computed), 1))
+    finally:
+        if task:
+            bar.stop()
     exported = None
     if netcdf is not None:
         exported = save_netcdf(open_sweep(out), netcdf)
@@ -171,10 +177,18 @@ def report(
         str | None,
         typer.Option("--scheduler", envvar="SKISNOW_SCHEDULER", help="Existing Dask scheduler."),
     ] = None,
+    mass_kg: Annotated[
+        str, typer.Option("--mass-kg", help="Masses of the maps (kg): start:stop:step or list.")
+    ] = "5:130:5",
+    snow_modulus_mpa: Annotated[
+        str, typer.Option("--snow-modulus-mpa", help="Snow moduli of the maps (MPa).")
+    ] = "20:400:40",
+    n_points: Annotated[int, typer.Option("--n-points", help="Grid points along the ski.")] = 4096,
     json_out: Annotated[bool, typer.Option("--json", help="Print one JSON document.")] = False,
 ) -> None:
     """Write one self-contained HTML report of a ski (metrics, zones at standard loads, maps)."""
     from skisnow.report import write_report
+    from skisnow.sweep import parse_values
 
     path = write_report(
         ski,
@@ -184,6 +198,9 @@ def report(
         workers=workers,
         scheduler=scheduler,
         profile_source=profile_source,
+        masses=tuple(parse_values(mass_kg, name="--mass-kg")),
+        map_moduli=tuple(parse_values(snow_modulus_mpa, name="--snow-modulus-mpa") * 1e6),
+        n_points=n_points,
     )
     if json_out:
         emit_json({"report": str(path)})
