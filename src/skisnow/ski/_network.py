@@ -1,0 +1,623 @@
+"""The camber network: the block-architecture neural network h = f(x, m, x_m) of paper 000, eq. 1.
+
+Kalliorinne et al. (2023), section 3.1 and Figure 3, replace one bench measurement per load case by
+a small artificial neural network trained on a whole measurement sequence. Its inputs are the
+coordinate along the ski ``x`` (0 at the balance point) and the load condition -- the mass ``m``
+and its position ``x_m`` -- and its output is the camber height ``h`` (eq. 1). The paper's
+MATLAB network has seven fully connected hidden layers in four blocks:
+
+1. *load condition*: one tanh ("tansig") layer on (m, x_m);
+2. *ski collapse*: three tanh layers; the first is fed by x **and** the load block;
+3. *ski camber*: two tanh layers fed by x **only** (independent of the load);
+4. *prediction*: one linear ("purelin") layer on the collapse and camber outputs together.
+
+This module reproduces that wiring (:class:`BlockNetwork`, an Equinox module) with configurable
+widths (:class:`Architecture`). As in MATLAB (``mapminmax``), every input and the output are
+mapped linearly to [-1, 1] over the training data; the map (:class:`Scaling`) and the trained
+(m, x_m) range (:class:`Domain`) are stored with the model. :class:`CamberNetwork` bundles one or
+a few trained members (an ensemble: the mean is the prediction, the spread an uncertainty).
+
+Units: SI inside (x, x_m, h in metres, m in kg). The camber height is the gap between the ski
+base and the rigid bench plane, so it is never negative; predictions are clipped at 0 by default
+(the linear prediction layer can dip a few µm below 0 in the contact zones where the truth is 0).
+
+JAX runs in float64 here, but only inside this module's functions (``jax.enable_x64`` as a
+context manager): importing skisnow never flips JAX's global configuration for other code.
+"""
+
+from __future__ import annotations
+
+import functools
+import warnings
+from collections.abc import Mapping, Sequence
+from dataclasses import asdict, dataclass, field
+from importlib import resources
+from pathlib import Path
+from typing import Any, Literal
+
+import equinox as eqx
+import jax
+import jax.numpy as jnp
+import numpy as np
+
+from skisnow._errors import DomainWarning, FileFormatError, InputError
+
+__all__ = [
+    "Architecture",
+    "BlockNetwork",
+    "CamberNetwork",
+    "Domain",
+    "Scaling",
+    "load_network",
+    "save_network",
+    "shipped_network",
+]
+
+#: Version of the model file layout written by :func:`save_network` (bump on incompatible change).
+MODEL_FORMAT = "skisnow-camber-network"
+MODEL_FORMAT_VERSION = 1
+
+
+def x64():
+    """Context manager: float64 JAX inside, the caller's configuration restored outside."""
+    return jax.enable_x64(True)
+
+
+# --------------------------------------------------------------------------------------------
+# Architecture, scaling, domain
+
+
+@dataclass(frozen=True, kw_only=True)
+class Architecture:
+    """Widths of the paper's four blocks (Figure 3): 1 + 3 + 2 tanh layers and 1 linear layer.
+
+    ``load``: neurons of the load-condition layer; ``collapse``: the three ski-collapse layers;
+    ``camber``: the two ski-camber layers. The prediction layer has one output.
+    """
+
+    load: int = 6
+    collapse: tuple[int, int, int] = (16, 16, 16)
+    camber: tuple[int, int] = (12, 12)
+
+    def __post_init__(self) -> None:
+        widths = self.widths
+        if len(self.collapse) != 3 or len(self.camber) != 2:
+            raise InputError(
+                f"architecture needs 3 collapse and 2 camber widths (paper 000, Figure 3); "
+                f"got collapse={self.collapse}, camber={self.camber}"
+            )
+        if any((not isinstance(w, (int, np.integer))) or w < 1 for w in widths):
+            raise InputError(f"layer widths must be positive integers, got {widths}")
+
+    @property
+    def widths(self) -> tuple[int, ...]:
+        """The six hidden widths in the order load, collapse ×3, camber ×2."""
+        return (self.load, *self.collapse, *self.camber)
+
+    @classmethod
+    def from_widths(cls, widths: Sequence[int] | str) -> Architecture:
+        """Six widths ``load, c1, c2, c3, k1, k2`` (sequence or ``"6,16,16,16,12,12"``)."""
+        if isinstance(widths, str):
+            try:
+                widths = [int(w) for w in widths.replace(" ", "").split(",") if w]
+            except ValueError:
+                raise InputError(
+                    f"widths must be six comma-separated integers (load, 3 collapse, 2 camber), "
+                    f"got {widths!r}"
+                ) from None
+        widths = [int(w) for w in widths]
+        if len(widths) != 6:
+            raise InputError(
+                "widths must be six integers: load, collapse1, collapse2, collapse3, camber1, "
+                f"camber2 (paper 000, Figure 3); got {len(widths)}: {widths}"
+            )
+        return cls(load=widths[0], collapse=tuple(widths[1:4]), camber=tuple(widths[4:6]))
+
+    def n_parameters(self) -> int:
+        """Number of trainable weights and biases of one member."""
+        n = 3 * self.load  # 2 inputs + bias
+        prev = 1 + self.load
+        for w in self.collapse:
+            n += (prev + 1) * w
+            prev = w
+        prev = 1
+        for w in self.camber:
+            n += (prev + 1) * w
+            prev = w
+        return n + self.collapse[-1] + self.camber[-1] + 1
+
+
+def _minmax(lo: float, hi: float) -> tuple[float, float]:
+    """Centre and half-range of MATLAB's ``mapminmax`` to [-1, 1] (half-range 1 if degenerate)."""
+    half = 0.5 * (hi - lo)
+    return 0.5 * (hi + lo), (half if half > 0 else 1.0)
+
+
+@dataclass(frozen=True, kw_only=True)
+class Scaling:
+    """Affine maps to the network's [-1, 1] units: ``u = (v - centre) / half_range``.
+
+    Computed from the training data as MATLAB's ``mapminmax`` does. Units: x, x_m, h in metres,
+    m in kg.
+    """
+
+    x_center: float
+    x_scale: float
+    mass_center: float
+    mass_scale: float
+    position_center: float
+    position_scale: float
+    height_center: float
+    height_scale: float
+
+    @classmethod
+    def from_data(
+        cls, x: np.ndarray, mass: np.ndarray, position: np.ndarray, height: np.ndarray
+    ) -> Scaling:
+        xc, xs = _minmax(float(np.min(x)), float(np.max(x)))
+        mc, ms = _minmax(float(np.min(mass)), float(np.max(mass)))
+        pc, ps = _minmax(float(np.min(position)), float(np.max(position)))
+        hc, hs = _minmax(float(np.min(height)), float(np.max(height)))
+        return cls(
+            x_center=xc,
+            x_scale=xs,
+            mass_center=mc,
+            mass_scale=ms,
+            position_center=pc,
+            position_scale=ps,
+            height_center=hc,
+            height_scale=hs,
+        )
+
+    def scale_inputs(self, x: Any, mass: Any, position: Any) -> tuple[Any, Any, Any]:
+        """(x, m, x_m) in SI → network units."""
+        return (
+            (x - self.x_center) / self.x_scale,
+            (mass - self.mass_center) / self.mass_scale,
+            (position - self.position_center) / self.position_scale,
+        )
+
+    def scale_height(self, height: Any) -> Any:
+        """h [m] → network output units."""
+        return (height - self.height_center) / self.height_scale
+
+    def unscale_height(self, u: Any) -> Any:
+        """Network output units → h [m]."""
+        return u * self.height_scale + self.height_center
+
+
+@dataclass(frozen=True, kw_only=True)
+class Domain:
+    """The trained range: load conditions (mass [kg], position [m]) and x [m] of the bench."""
+
+    mass_min: float
+    mass_max: float
+    position_min: float
+    position_max: float
+    x_min: float
+    x_max: float
+
+    def violations(self, x: np.ndarray, mass: np.ndarray, position: np.ndarray) -> list[str]:
+        """Human-readable list of what lies outside the trained range (empty if nothing)."""
+        out = []
+
+        # a relative slack of 1e-9 so that values read back from mm columns stay inside
+        def outside(v: np.ndarray, lo: float, hi: float) -> bool:
+            slack = 1e-9 * max(abs(lo), abs(hi), 1.0)
+            return v.size > 0 and bool(np.any((v < lo - slack) | (v > hi + slack)))
+
+        if outside(mass, self.mass_min, self.mass_max):
+            out.append(
+                f"mass {np.min(mass):.4g}..{np.max(mass):.4g} kg outside the trained "
+                f"{self.mass_min:.4g}..{self.mass_max:.4g} kg"
+            )
+        if outside(position, self.position_min, self.position_max):
+            out.append(
+                f"load position {1e3 * np.min(position):.4g}..{1e3 * np.max(position):.4g} mm "
+                f"outside the trained {1e3 * self.position_min:.4g}.."
+                f"{1e3 * self.position_max:.4g} mm"
+            )
+        if outside(x, self.x_min, self.x_max):
+            out.append(
+                f"x {1e3 * np.min(x):.4g}..{1e3 * np.max(x):.4g} mm outside the trained "
+                f"{1e3 * self.x_min:.4g}..{1e3 * self.x_max:.4g} mm"
+            )
+        return out
+
+
+# --------------------------------------------------------------------------------------------
+# The block network (Equinox)
+
+
+class BlockNetwork(eqx.Module):
+    """One member: the paper's 4-block network (Figure 3) on scaled inputs, scaled output.
+
+    All hidden layers use tanh (MATLAB's ``tansig``), the prediction layer is linear
+    (``purelin``). The x input enters the first collapse layer and the first camber layer; the
+    load condition (m, x_m) enters only the load-condition layer, whose output feeds the first
+    collapse layer. Hence the camber block is a function of x alone (tested).
+    """
+
+    load: eqx.nn.Linear
+    collapse: tuple[eqx.nn.Linear, eqx.nn.Linear, eqx.nn.Linear]
+    camber: tuple[eqx.nn.Linear, eqx.nn.Linear]
+    prediction: eqx.nn.Linear
+
+    def __init__(self, architecture: Architecture, *, key: jax.Array) -> None:
+        a = architecture
+        keys = jax.random.split(key, 7)
+        f64 = jnp.float64
+        self.load = eqx.nn.Linear(2, a.load, key=keys[0], dtype=f64)
+        c_in = (1 + a.load, a.collapse[0], a.collapse[1])
+        self.collapse = tuple(
+            eqx.nn.Linear(i, o, key=k, dtype=f64)
+            for i, o, k in zip(c_in, a.collapse, keys[1:4], strict=True)
+        )
+        k_in = (1, a.camber[0])
+        self.camber = tuple(
+            eqx.nn.Linear(i, o, key=k, dtype=f64)
+            for i, o, k in zip(k_in, a.camber, keys[4:6], strict=True)
+        )
+        self.prediction = eqx.nn.Linear(
+            a.collapse[-1] + a.camber[-1], "scalar", key=keys[6], dtype=f64
+        )
+
+    # Blocks on batches: rows are points (or load cases), columns are neurons.
+    def load_block(self, load: jax.Array) -> jax.Array:
+        """Block 1: (k, 2) scaled (m, x_m) → (k, n_load)."""
+        return jnp.tanh(load @ self.load.weight.T + self.load.bias)
+
+    def camber_block(self, xs: jax.Array) -> jax.Array:
+        """Block 3: (n,) scaled x → (n, n_camber2); depends on x only."""
+        first, second = self.camber
+        a = jnp.tanh(xs[:, None] * first.weight[:, 0] + first.bias)
+        return jnp.tanh(a @ second.weight.T + second.bias)
+
+    def _collapse_first(self, xs: jax.Array, load_features: jax.Array) -> jax.Array:
+        w = self.collapse[0].weight  # columns: [x, load features...]
+        return xs[..., None] * w[:, 0] + load_features @ w[:, 1:].T + self.collapse[0].bias
+
+    def _collapse_rest(self, a: jax.Array) -> jax.Array:
+        a = jnp.tanh(a)
+        for layer in self.collapse[1:]:
+            a = jnp.tanh(a @ layer.weight.T + layer.bias)
+        return a
+
+    def _predict(self, collapse: jax.Array, camber: jax.Array) -> jax.Array:
+        n_c = collapse.shape[-1]
+        w = self.prediction.weight  # (1, n_c + n_k)
+        return collapse @ w[0, :n_c] + camber @ w[0, n_c:] + self.prediction.bias[0]
+
+    def points(self, xs: jax.Array, ms: jax.Array, ps: jax.Array) -> jax.Array:
+        """Scaled output at scattered points (all (N,), scaled) → (N,)."""
+        lf = self.load_block(jnp.stack([ms, ps], axis=-1))
+        collapse = self._collapse_rest(self._collapse_first(xs, lf))
+        return self._predict(collapse, self.camber_block(xs))
+
+    def grid(self, xs: jax.Array, ms: jax.Array, ps: jax.Array) -> jax.Array:
+        """Scaled output on a grid: x (n,), load cases m, x_m (k,) → (k, n).
+
+        The camber block runs once per x and the load block once per load case.
+        """
+        lf = self.load_block(jnp.stack([ms, ps], axis=-1))  # (k, L)
+        w = self.collapse[0].weight
+        pre = (
+            xs[None, :, None] * w[:, 0] + (lf @ w[:, 1:].T)[:, None, :] + self.collapse[0].bias
+        )  # (k, n, C1)
+        collapse = self._collapse_rest(pre)
+        return self._predict(collapse, self.camber_block(xs)[None, :, :])
+
+
+@eqx.filter_jit
+def _ensemble_grid(members: tuple[BlockNetwork, ...], xs, ms, ps) -> jax.Array:
+    return jnp.stack([m.grid(xs, ms, ps) for m in members])
+
+
+# --------------------------------------------------------------------------------------------
+# The trained network
+
+
+@dataclass(frozen=True, kw_only=True, eq=False)
+class CamberNetwork:
+    """A trained camber network: members (ensemble), scaling, trained domain and metadata.
+
+    ``metadata`` holds the ski name, the sha256 of the training data, the seed, the measured
+    errors (µm) on the held-out load conditions and the training time (see
+    :func:`skisnow.ski.train_network`).
+    """
+
+    architecture: Architecture
+    scaling: Scaling
+    domain: Domain
+    members: tuple[BlockNetwork, ...]
+    metadata: Mapping[str, Any] = field(default_factory=dict)
+
+    @property
+    def ski(self) -> str | None:
+        """Name of the ski the network was trained on (from the bench table)."""
+        return self.metadata.get("ski")
+
+    def _raw(
+        self,
+        x: Any,
+        mass: Any,
+        load_position: Any,
+        on_domain_error: Literal["warn", "raise", "ignore"],
+    ) -> tuple[np.ndarray, bool]:
+        x = np.asarray(x, dtype=float)
+        if x.ndim != 1 or x.size == 0:
+            raise InputError(
+                f"x must be a non-empty 1-D array of positions [m], got shape {x.shape}"
+            )
+        m = np.asarray(mass, dtype=float)
+        p = np.asarray(load_position, dtype=float)
+        scalar = m.ndim == 0 and p.ndim == 0
+        try:
+            m, p = np.broadcast_arrays(np.atleast_1d(m), np.atleast_1d(p))
+        except ValueError:
+            raise InputError(
+                f"mass {m.shape} and load_position {p.shape} must broadcast to one load-case axis"
+            ) from None
+        if m.ndim != 1:
+            raise InputError(f"mass and load_position must be scalars or 1-D, got shape {m.shape}")
+        for name, v in (("x", x), ("mass", m), ("load_position", p)):
+            if not np.all(np.isfinite(v)):
+                raise InputError(f"{name} must be finite (no NaN/inf)")
+        if on_domain_error not in ("warn", "raise", "ignore"):
+            raise InputError(
+                f"on_domain_error must be 'warn', 'raise' or 'ignore', got {on_domain_error!r}"
+            )
+        bad = self.domain.violations(x, m, p)
+        if bad and on_domain_error != "ignore":
+            msg = (
+                f"camber network for ski {self.ski!r} used outside its trained domain: "
+                + "; ".join(bad)
+            )
+            if on_domain_error == "raise":
+                raise InputError(msg)
+            warnings.warn(msg + " (extrapolation; accuracy unknown)", DomainWarning, stacklevel=3)
+        s = self.scaling
+        xs, ms, ps = s.scale_inputs(x, m, p)
+        with x64():
+            out = _ensemble_grid(self.members, jnp.asarray(xs), jnp.asarray(ms), jnp.asarray(ps))
+            out = np.asarray(out, dtype=float)
+        return s.unscale_height(out), scalar
+
+    def predict(
+        self,
+        x: Any,
+        mass: Any,
+        load_position: Any,
+        *,
+        on_domain_error: Literal["warn", "raise", "ignore"] = "warn",
+        clip: bool = True,
+    ) -> np.ndarray:
+        """Camber height h = f(x, m, x_m) (paper 000, eq. 1) [m] on the grid ``x``.
+
+        Parameters
+        ----------
+        x : positions along the ski [m], 1-D, any resolution.
+        mass, load_position : the load condition(s): mass [kg] and position [m] from the balance
+            point (positive toward the tip); scalars or 1-D arrays broadcast to k load cases.
+        on_domain_error : outside the trained (m, x_m, x) range: ``'warn'`` (a
+            :class:`~skisnow.DomainWarning`), ``'raise'`` (:class:`~skisnow.InputError`) or
+            ``'ignore'``.
+        clip : clip at 0 (the gap to the bench plane is never negative).
+
+        Returns
+        -------
+        ``(n,)`` for a scalar load condition, ``(k, n)`` for k load cases (the ensemble mean).
+        """
+        h, scalar = self._raw(x, mass, load_position, on_domain_error)
+        h = h.mean(axis=0)
+        if clip:
+            h = np.maximum(h, 0.0)
+        return h[0] if scalar else h
+
+    def predict_with_spread(
+        self,
+        x: Any,
+        mass: Any,
+        load_position: Any,
+        *,
+        on_domain_error: Literal["warn", "raise", "ignore"] = "warn",
+        clip: bool = True,
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """Like :meth:`predict`, plus the ensemble spread [m] (sample standard deviation of the
+        members, 0 for a single member) as an uncertainty estimate of the same shape."""
+        h, scalar = self._raw(x, mass, load_position, on_domain_error)
+        if clip:
+            h = np.maximum(h, 0.0)
+        mean = h.mean(axis=0)
+        spread = h.std(axis=0, ddof=1) if h.shape[0] > 1 else np.zeros_like(mean)
+        return (mean[0], spread[0]) if scalar else (mean, spread)
+
+
+# --------------------------------------------------------------------------------------------
+# Model files: weights .npz + metadata .json (never pickle)
+
+
+def _layer_items(member: BlockNetwork) -> list[tuple[str, eqx.nn.Linear]]:
+    return [
+        ("load", member.load),
+        *[(f"collapse{i}", layer) for i, layer in enumerate(member.collapse)],
+        *[(f"camber{i}", layer) for i, layer in enumerate(member.camber)],
+        ("prediction", member.prediction),
+    ]
+
+
+def network_arrays(net: CamberNetwork) -> dict[str, np.ndarray]:
+    """The weights as a flat ``{name: float64 array}`` dict (the .npz content)."""
+    arrays = {}
+    for k, member in enumerate(net.members):
+        for name, layer in _layer_items(member):
+            arrays[f"member{k}/{name}/weight"] = np.asarray(layer.weight, dtype=np.float64)
+            arrays[f"member{k}/{name}/bias"] = np.asarray(layer.bias, dtype=np.float64)
+    return arrays
+
+
+def _members_from_arrays(
+    arrays: Mapping[str, np.ndarray], architecture: Architecture, n_members: int, where: str
+) -> tuple[BlockNetwork, ...]:
+    members = []
+    with x64():
+        template = BlockNetwork(architecture, key=jax.random.PRNGKey(0))
+        for k in range(n_members):
+            member = template
+            for name, layer in _layer_items(template):
+                new = []
+                for part in ("weight", "bias"):
+                    key = f"member{k}/{name}/{part}"
+                    if key not in arrays:
+                        raise FileFormatError(f"{where}: weight array {key!r} is missing")
+                    a = arrays[key]
+                    ref = getattr(layer, part)
+                    if a.shape != ref.shape or a.dtype != np.float64:
+                        raise FileFormatError(
+                            f"{where}: array {key!r} has shape {a.shape} {a.dtype}, the "
+                            f"architecture {architecture.widths} needs {ref.shape} float64"
+                        )
+                    if not np.all(np.isfinite(a)):
+                        raise FileFormatError(f"{where}: array {key!r} holds NaN/inf")
+                    new.append(jnp.asarray(a))
+                member = _set_layer(member, name, *new)
+            members.append(member)
+    return tuple(members)
+
+
+def _get_layer(member: BlockNetwork, name: str) -> eqx.nn.Linear:
+    return dict(_layer_items(member))[name]
+
+
+def _set_layer(member: BlockNetwork, name: str, weight: jax.Array, bias: jax.Array) -> BlockNetwork:
+    def where(m: BlockNetwork):
+        layer = _get_layer(m, name)
+        return layer.weight, layer.bias
+
+    return eqx.tree_at(where, member, (weight, bias))
+
+
+def save_network(net: CamberNetwork, path: str | Path) -> tuple[Path, Path]:
+    """Write ``PATH.npz`` (weights) and ``PATH.json`` (metadata); return both paths.
+
+    ``path`` may end in ``.npz``, ``.json`` or nothing. The JSON holds the file-format version,
+    the skisnow version, the architecture, scaling, domain, the sha256 of the weights file and
+    the training metadata (data hash, seed, measured errors). No pickle anywhere.
+    """
+    from skisnow.io._model import write_model_files
+
+    return write_model_files(path, network_arrays(net), _metadata_document(net))
+
+
+def _metadata_document(net: CamberNetwork) -> dict[str, Any]:
+    from skisnow import __version__
+
+    return {
+        "format": MODEL_FORMAT,
+        "format_version": MODEL_FORMAT_VERSION,
+        "skisnow_version": __version__,
+        "architecture": {
+            "load": net.architecture.load,
+            "collapse": list(net.architecture.collapse),
+            "camber": list(net.architecture.camber),
+        },
+        "n_members": len(net.members),
+        "scaling": asdict(net.scaling),
+        "domain": asdict(net.domain),
+        "metadata": dict(net.metadata),
+    }
+
+
+def _require(doc: Mapping[str, Any], key: str, where: str) -> Any:
+    if key not in doc:
+        raise FileFormatError(f"{where}: metadata key {key!r} is missing")
+    return doc[key]
+
+
+def network_from_files(
+    arrays: Mapping[str, np.ndarray], doc: Mapping[str, Any], where: str
+) -> CamberNetwork:
+    """Rebuild a :class:`CamberNetwork` from the .npz arrays and the .json document."""
+    if doc.get("format") != MODEL_FORMAT:
+        raise FileFormatError(
+            f"{where}: not a skisnow camber-network model (format {doc.get('format')!r}, "
+            f"expected {MODEL_FORMAT!r})"
+        )
+    version = doc.get("format_version")
+    if version != MODEL_FORMAT_VERSION:
+        raise FileFormatError(
+            f"{where}: model file format version {version!r} (written by skisnow "
+            f"{doc.get('skisnow_version', '?')}) is not supported; this skisnow reads version "
+            f"{MODEL_FORMAT_VERSION}. Retrain with `skisnow train`."
+        )
+    try:
+        arch_doc = _require(doc, "architecture", where)
+        architecture = Architecture(
+            load=int(arch_doc["load"]),
+            collapse=tuple(int(w) for w in arch_doc["collapse"]),
+            camber=tuple(int(w) for w in arch_doc["camber"]),
+        )
+        scaling = Scaling(**{k: float(v) for k, v in _require(doc, "scaling", where).items()})
+        domain = Domain(**{k: float(v) for k, v in _require(doc, "domain", where).items()})
+        n_members = int(_require(doc, "n_members", where))
+    except (KeyError, TypeError, ValueError) as exc:
+        if isinstance(exc, FileFormatError):
+            raise
+        raise FileFormatError(f"{where}: invalid metadata ({exc})") from None
+    if n_members < 1:
+        raise FileFormatError(f"{where}: n_members must be >= 1, got {n_members}")
+    members = _members_from_arrays(arrays, architecture, n_members, where)
+    return CamberNetwork(
+        architecture=architecture,
+        scaling=scaling,
+        domain=domain,
+        members=members,
+        metadata=dict(doc.get("metadata", {})),
+    )
+
+
+def load_network(path: str | Path) -> CamberNetwork:
+    """Read a model written by :func:`save_network` (``PATH.npz`` + ``PATH.json``).
+
+    Raises :class:`~skisnow.FileFormatError` if a file is missing, corrupt or truncated (the
+    weights' sha256 is checked against the metadata) or from an incompatible format version.
+    """
+    from skisnow.io._model import read_model_files
+
+    arrays, doc, where = read_model_files(path)
+    return network_from_files(arrays, doc, where)
+
+
+def _load_shipped_bytes(npz: bytes, text: str, where: str) -> CamberNetwork:
+    from skisnow.io._model import parse_model_bytes
+
+    arrays, doc = parse_model_bytes(npz, text, where)
+    return network_from_files(arrays, doc, where)
+
+
+#: Directory of the pretrained networks shipped in the package.
+MODELS_PACKAGE = "skisnow.ski"
+
+
+@functools.cache
+def shipped_network(ski_name: str) -> CamberNetwork:
+    """The pretrained network of a shipped ski (``'classic'`` or ``'skate'``), loaded once.
+
+    The files are ``skisnow/ski/models/<name>.npz|.json``, trained on the virtual bench of that
+    ski (``benchmarks/bench_network.py --retrain`` regenerates them).
+    """
+    base = resources.files(MODELS_PACKAGE) / "models"
+    available = (
+        sorted(p.name[:-4] for p in base.iterdir() if p.name.endswith(".npz"))
+        if base.is_dir()
+        else []
+    )
+    if ski_name not in available:
+        raise InputError(
+            f"no shipped camber network for ski {ski_name!r}; available: {', '.join(available)}"
+        )
+    return _load_shipped_bytes(
+        (base / f"{ski_name}.npz").read_bytes(),
+        (base / f"{ski_name}.json").read_text(encoding="utf-8"),
+        f"shipped model skisnow/ski/models/{ski_name}",
+    )
