@@ -16,7 +16,8 @@ of Cross Country Skis", Front. Mech. Eng. 7:659995 (2021):
   :data:`SEED_GRAIN_FIT`;
 * statistics (eq. 10): :func:`pearson`, :func:`critical_r`, :func:`rank_table`,
   :func:`read_rank_table`, :func:`seed_table4_comparison`;
-* elastic–perfectly-plastic flat-ice contact: :func:`elastoplastic_contact`.
+* elastic–perfectly-plastic flat-ice contact (seed Fig. 3): :func:`elastoplastic_contact`,
+  :func:`flat_plastic_area`.
 """
 
 from skisnow.micro import _scherge2021 as scherge2021
@@ -27,6 +28,12 @@ from skisnow.micro._bearing import (
     bearing_area_reference,
     bearing_sweep,
     slope_factor,
+)
+from skisnow.micro._elastoplastic import (
+    ElastoplasticResult,
+    elastoplastic_contact,
+    flat_plastic_area,
+    ice_base_modulus,
 )
 from skisnow.micro._grains import (
     SEED_GRAIN_FIT,
@@ -84,6 +91,7 @@ __all__ = [
     "BearingMap",
     "BearingSweep",
     "Correlation",
+    "ElastoplasticResult",
     "GrainFit",
     "GrindSpec",
     "GroovePass",
@@ -100,11 +108,14 @@ __all__ = [
     "correlate",
     "critical_r",
     "deformation_regime",
+    "elastoplastic_contact",
     "fill_missing",
     "fit_grain_distribution",
+    "flat_plastic_area",
     "grain_average",
     "grind",
     "grind_preset",
+    "ice_base_modulus",
     "ice_hardness",
     "line_parameters",
     "lowpass",
