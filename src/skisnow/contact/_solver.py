@@ -595,8 +595,10 @@ def solve_contact(
     translation, rotation
         δ [m] and θ [rad] for 'displacement' control.
     initial_pressure
-        Warm start [Pa] on the same grid (e.g. the previous solution along a load path); it is
-        clipped to ≥ 0 and rescaled to the constraints.
+        Warm start [Pa] with the shape of :attr:`ContactSolution.pressure` (``(nx,)``, or
+        ``(nx, ny)`` for the surface model), e.g. the previous solution along a load path; it
+        is clipped to ≥ 0 and rescaled to the constraints (a start that cannot carry the
+        moment is replaced by the default start).
     tol
         Polonsky–Keer tolerance on Σ|Δp|/Σp between iterations.
     max_iter
