@@ -110,6 +110,7 @@ def test_report_command(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> N
     assert (tmp_path / "classic_maps_beam.zarr").is_dir()
 
 
+@pytest.mark.slow
 def test_contact_part_of_the_demo_writes_every_figure(tmp_path: Path) -> None:
     from skisnow.cli._demo import PAPER_CASES, run_contact_demo
 

@@ -182,3 +182,33 @@ def test_netcdf_export_round_trip(tmp_path: Path) -> None:
     np.testing.assert_array_equal(back.area_cm2.values, ds.area_cm2.values)
     assert back.attrs["skisnow_sweep_spec"] == ds.attrs["skisnow_sweep_spec"]
     assert W > 0
+
+
+def test_dask_retries_a_failing_chunk(tmp_path: Path) -> None:
+    """A chunk whose first attempt fails (a lost worker, a transient error) is retried by Dask
+    and the sweep ends with the same dataset as a clean run."""
+    from distributed import Client, LocalCluster
+
+    marks = tmp_path / "attempts"  # the task is serialised, so count attempts on disk
+    marks.mkdir()
+
+    def flaky_once(spec, ski, x_m, e):
+        mark = marks / f"{ski}_{x_m}_{e}"
+        with mark.open("a") as f:
+            f.write("x")
+        if e == 100e6 and mark.stat().st_size == 1:
+            raise OSError("transient failure on a worker")
+        return hertz_chunk(spec, ski, x_m, e)
+
+    spec = _spec()
+    run_sweep(spec, tmp_path / "ref.zarr", chunk_function=hertz_chunk, workers=0)
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=False,
+                      dashboard_address=None) as cluster, Client(cluster) as client:  # fmt: skip
+        run = run_sweep(spec, tmp_path / "s.zarr", chunk_function=flaky_once, client=client,
+                        retries=1)  # fmt: skip
+    assert len(run.computed) == 18
+    sizes = {p.name: p.stat().st_size for p in marks.iterdir()}
+    assert len(sizes) == 18
+    assert sorted(n for k, n in sizes.items() if k.endswith("_100000000.0")) == [2] * 6
+    a, b = open_sweep(tmp_path / "s.zarr"), open_sweep(tmp_path / "ref.zarr")
+    xr.testing.assert_equal(a, b)  # attrs differ only in the chunk function's name
