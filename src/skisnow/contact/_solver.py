@@ -361,6 +361,8 @@ def _pk(
     hh = h if target is None else h - target
     p = np.array(p0, dtype=np.float64)
     u = apply(p)
+    # "nothing to move" when the projected gap is below 1e-13 of the heights and displacements
+    h_scale = float(np.ptp(hh)) + float(np.abs(u).max()) + 1e-300
     t = np.zeros_like(p)
     g = np.empty_like(p)
     m = np.empty_like(p)  # 1.0 on the contact set, 0.0 elsewhere
@@ -413,6 +415,7 @@ def _pk(
             if b_ != 0.0:
                 g -= b_ * xi
         gm = g * m
+        big_gm = _dot(gm, gm)
         if inv is not None:
             z = apply(gm, inv)
             z *= m
@@ -424,7 +427,7 @@ def _pk(
             big_g = float(_dot(gm, z))
         else:
             z = gm
-            big_g = float(_dot(gm, gm))
+            big_g = big_gm
         if conj and g_old > 0:
             t *= big_g / g_old
             t *= m
@@ -439,9 +442,8 @@ def _pk(
             t -= ta * m
             if tb != 0.0:
                 t -= tb * xm_
-        g_scale = float(np.abs(g).max()) + 1e-300
-        if float(np.abs(t).max()) <= 1e-13 * g_scale:
-            # nothing to move on this contact set: exact there; grow it by the overlapping cells
+        if big_gm <= (1e-13 * h_scale) ** 2 * cnt:
+            # the gap is flat on this contact set: exact there; grow it by the overlapping cells
             overlap = (p == 0.0) & (g < 0.0)
             if not overlap.any():
                 converged, message = True, "exact solution on the contact set"
@@ -581,7 +583,9 @@ def solve_contact(
     model
         'strip' (1D along x, Boussinesq kernel averaged over a constant ``width``; pressure
         uniform across it), 'surface' (2D grid ``nx × n_across`` over the footprint of width
-        ``w(x)``, full 3D half-space) or 'line' (plane strain, pressure per ``width``).
+        ``w(x)``, full 3D half-space) or 'line' (plane strain: a 2D half-space, pressure
+        uniform over ``width``, so W/width is the load per unit length; use ``width=1.0`` to
+        give the load per unit length directly).
     control
         'moment' (force and moment balance about x_m, the paper's eq. 3), 'load' (force only,
         θ = 0) or 'displacement' (δ = ``translation`` and θ = ``rotation`` prescribed).
