@@ -38,6 +38,7 @@ from skisnow.ski._network import (
     BlockNetwork,
     CamberNetwork,
     Domain,
+    ReferenceProfile,
     Scaling,
     x64,
 )
@@ -156,6 +157,7 @@ def train_network(
     patience: int = 25,
     contact_height: float = 0.2e-3,
     contact_weight: float = 1.0,
+    reference_profile: bool = True,
     ensemble: int = 1,
     progress: Callable[[TrainingProgress], None] | None = None,
     report_every: int = 50,
@@ -176,6 +178,9 @@ def train_network(
     patience : stop LM after this many steps without a better held-out mean error.
     contact_height, contact_weight : residuals where the bench height is below
         ``contact_height`` [m] are weighted by ``contact_weight`` (1 = plain least squares).
+    reference_profile : learn ``h - h_ref(x)`` with ``h_ref`` the mean training profile (an
+        x-dependent output scaling, see :class:`ReferenceProfile`); ``False`` = the paper's
+        plain network on ``h``.
     ensemble : number of members (different initial weights); the spread of their predictions is
         reported by :meth:`CamberNetwork.predict_with_spread`.
     progress : called with a :class:`TrainingProgress` every ``report_every`` Adam steps and
@@ -216,7 +221,13 @@ def train_network(
     is_val = val_cond[cond_index]
     tr, va = ~is_val, is_val
 
-    scaling = Scaling.from_data(x[tr], m[tr], p[tr], h[tr])
+    reference = (
+        ReferenceProfile.mean_of_profiles(x[tr], h[tr], cond_index[tr])
+        if reference_profile
+        else None
+    )
+    target = h - reference(x) if reference is not None else h
+    scaling = Scaling.from_data(x[tr], m[tr], p[tr], target[tr])
     domain = Domain(
         mass_min=float(m.min()),
         mass_max=float(m.max()),
@@ -226,7 +237,7 @@ def train_network(
         x_max=float(x.max()),
     )
     xs, ms, ps = scaling.scale_inputs(x, m, p)
-    hs = scaling.scale_height(h)
+    hs = scaling.scale_height(target)
     w = _loss_weights(h, contact_height, contact_weight)
 
     rng = np.random.default_rng(seed)
@@ -235,7 +246,8 @@ def train_network(
     histories = []
     with x64():
         data_all = tuple(jnp.asarray(a[tr]) for a in (xs, ms, ps, hs, w))
-        data_va = tuple(jnp.asarray(a[va]) for a in (xs, ms, ps, h))
+        ref_va = reference(x[va]) if reference is not None else np.zeros(int(va.sum()))
+        data_va = tuple(jnp.asarray(a) for a in (xs[va], ms[va], ps[va], h[va], ref_va))
         # LM subsample: every k-th training point (a stratified, deterministic thinning) with
         # a seeded offset, so that every training condition and the whole ski are represented.
         n_tr = int(tr.sum())
@@ -266,7 +278,11 @@ def train_network(
             histories.append(hist)
 
     net = CamberNetwork(
-        architecture=arch, scaling=scaling, domain=domain, members=tuple(members), metadata={}
+        architecture=arch,
+        scaling=scaling,
+        domain=domain,
+        members=tuple(members),
+        reference=reference,
     )
     # Held-out errors of the final (ensemble-mean, clipped) prediction, in µm.
     err = np.empty(0)
@@ -303,12 +319,18 @@ def train_network(
             "contact_height_m": contact_height,
             "contact_weight": contact_weight,
             "validation_fraction": validation_fraction,
+            "reference_profile": reference_profile,
         },
         "lm_steps_taken": [h_["lm_steps"] for h_ in histories],
         "training_time_s": time.perf_counter() - t0,
     }
     return CamberNetwork(
-        architecture=arch, scaling=scaling, domain=domain, members=tuple(members), metadata=metadata
+        architecture=arch,
+        scaling=scaling,
+        domain=domain,
+        members=tuple(members),
+        reference=reference,
+        metadata=metadata,
     )
 
 
@@ -339,8 +361,9 @@ def _train_member(
 
     @jax.jit
     def val_errors(theta: jax.Array) -> tuple[jax.Array, jax.Array]:
-        xs, ms, ps, h = data_va
-        pred = jnp.maximum(scaling.unscale_height(unravel(theta).points(xs, ms, ps)), 0.0)
+        xs, ms, ps, h, ref = data_va
+        pred = scaling.unscale_height(unravel(theta).points(xs, ms, ps)) + ref
+        pred = jnp.maximum(pred, 0.0)
         e = jnp.abs(pred - h)
         return 1e6 * jnp.mean(e), 1e6 * jnp.max(e)
 

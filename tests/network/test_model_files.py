@@ -1,0 +1,98 @@
+"""Model files: save → load gives identical predictions; corrupt, truncated, foreign or
+incompatible files raise FileFormatError naming the file; never pickle."""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+from skisnow import FileFormatError
+from skisnow.ski import load_network, save_network
+
+
+def _x():
+    return np.linspace(-0.95, 1.0, 101)
+
+
+def test_round_trip_identical_predictions(toy_network, tmp_path):
+    npz, js = save_network(toy_network, tmp_path / "m")
+    assert npz.name == "m.npz" and js.name == "m.json"
+    back = load_network(tmp_path / "m.npz")
+    masses = np.array([5.0, 60.0, 130.0])
+    np.testing.assert_array_equal(
+        back.predict(_x(), masses, -0.1), toy_network.predict(_x(), masses, -0.1)
+    )
+    assert back.architecture == toy_network.architecture
+    assert back.scaling == toy_network.scaling
+    assert back.domain == toy_network.domain
+    assert dict(back.metadata) == dict(toy_network.metadata)
+    doc = json.loads(js.read_text())
+    assert doc["format_version"] == 1 and "skisnow_version" in doc
+
+
+def test_no_pickle_in_weights(toy_network, tmp_path):
+    npz, _ = save_network(toy_network, tmp_path / "m")
+    with np.load(npz, allow_pickle=False) as f:
+        assert all(f[k].dtype == np.float64 for k in f.files)
+
+
+def test_truncated_weights(toy_network, tmp_path):
+    npz, _ = save_network(toy_network, tmp_path / "m")
+    npz.write_bytes(npz.read_bytes()[:-100])
+    with pytest.raises(FileFormatError, match="corrupt or truncated"):
+        load_network(tmp_path / "m")
+
+
+def test_flipped_byte(toy_network, tmp_path):
+    npz, _ = save_network(toy_network, tmp_path / "m")
+    data = bytearray(npz.read_bytes())
+    data[len(data) // 2] ^= 0xFF
+    npz.write_bytes(bytes(data))
+    with pytest.raises(FileFormatError, match=r"m\.npz"):
+        load_network(tmp_path / "m")
+
+
+def test_bad_json_and_missing_file(toy_network, tmp_path):
+    _, js = save_network(toy_network, tmp_path / "m")
+    js.write_text("{not json")
+    with pytest.raises(FileFormatError, match="not valid JSON"):
+        load_network(tmp_path / "m")
+    with pytest.raises(FileFormatError, match="not found"):
+        load_network(tmp_path / "absent")
+
+
+def test_incompatible_version_and_foreign_format(toy_network, tmp_path):
+    _, js = save_network(toy_network, tmp_path / "m")
+    doc = json.loads(js.read_text())
+    js.write_text(json.dumps({**doc, "format_version": 99, "skisnow_version": "9.0"}))
+    with pytest.raises(FileFormatError, match=r"version 99 .*skisnow 9\.0.*reads version 1"):
+        load_network(tmp_path / "m")
+    js.write_text(json.dumps({**doc, "format": "something-else"}))
+    with pytest.raises(FileFormatError, match="not a skisnow camber-network"):
+        load_network(tmp_path / "m")
+
+
+def test_architecture_mismatch(toy_network, tmp_path):
+    """Weights that do not fit the architecture in the metadata are refused, not reshaped."""
+    _, js = save_network(toy_network, tmp_path / "m")
+    doc = json.loads(js.read_text())
+    doc["architecture"]["collapse"] = [7, 4, 6]
+    js.write_text(json.dumps(doc))
+    with pytest.raises(FileFormatError, match="needs"):
+        load_network(tmp_path / "m")
+
+
+@pytest.mark.parametrize("ski", ["classic", "skate"])
+def test_shipped_networks_load(ski):
+    from skisnow.ski import get_ski, shipped_network
+
+    net = shipped_network(ski)
+    assert net is shipped_network(ski)  # cached
+    assert net.ski == ski
+    s = get_ski(ski)
+    x = np.linspace(s.x_tail, s.x_tip, 200)
+    h = net.predict(x, 70.0, -0.1)
+    assert h.shape == (200,) and np.all(np.isfinite(h)) and np.all(h >= 0)
+    assert net.metadata["validation_errors"]["mean_um"] < 50
