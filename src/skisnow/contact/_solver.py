@@ -328,7 +328,7 @@ def _pk(
     shape = conv.shape
     n_conv = 0
 
-    inv = conv.inverse() if precondition else None
+    inv = _preconditioner(conv) if precondition else None
 
     def add_direct(out: np.ndarray, cells: np.ndarray, values: np.ndarray) -> None:
         """out += K Δ for Δ on a few (flat footprint) cells, by kernel columns."""
@@ -937,7 +937,13 @@ def _coarse_start(
     return np.repeat(pc, 2)
 
 
-@functools.lru_cache(maxsize=16)
+@functools.lru_cache(maxsize=8)
+def _preconditioner(conv: Convolution) -> Convolution:
+    """The circulant inverse of a (cached) operator, cached with it."""
+    return conv.inverse()
+
+
+@functools.lru_cache(maxsize=8)
 def _operator(
     model: str,
     shape: tuple[int, ...],
