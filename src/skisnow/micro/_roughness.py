@@ -113,31 +113,25 @@ def areal_parameters(topo: Topography) -> dict[str, float]:
     }
 
 
-def _profile_ra_rz_rt(z: np.ndarray, n_sampling: int) -> tuple[float, float, float]:
-    x = np.arange(z.size, dtype=np.float64)
-    coef = np.polyfit(x, z, 1)  # ISO 4287 least-squares mean line
-    r = z - np.polyval(coef, x)
-    ra = float(np.mean(np.abs(r)))
-    rt = float(r.max() - r.min())
-    parts = np.array_split(r, n_sampling)
-    rz = float(np.mean([p.max() - p.min() for p in parts if p.size]))
-    return ra, rz, rt
-
-
 def line_parameters(topo: Topography, *, axis: int = 0, n_sampling: int = 5) -> dict[str, float]:
     """Line roughness Ra, Rz (ISO 4287, ``n_sampling`` sampling lengths) and Rt, averaged over
-    all complete profiles along ``axis`` (0: across the ski, i.e. across linear grooves)."""
+    all complete profiles along ``axis`` (0: across the ski, i.e. across linear grooves).
+
+    Each profile's least-squares mean line is removed first (vectorised over profiles)."""
     h = np.asarray(topo.heights)
-    lines = np.moveaxis(h, axis, 1)
-    vals = [
-        _profile_ra_rz_rt(line, n_sampling)
-        for line in lines
-        if np.isfinite(line).all() and line.size >= 2 * n_sampling
-    ]
-    if not vals:
+    lines = np.moveaxis(h, axis, 0).T  # (n_lines, n_points)
+    lines = lines[np.isfinite(lines).all(axis=1)]
+    if lines.shape[0] == 0 or lines.shape[1] < 2 * n_sampling:
         raise InputError(f"{topo.source}: no complete profile along axis {axis}")
-    ra, rz, rt = np.mean(np.array(vals), axis=0)
-    return {"Ra": float(ra), "Rz": float(rz), "Rt": float(rt)}
+    x = np.arange(lines.shape[1], dtype=np.float64)
+    xc = x - x.mean()
+    slope = (lines @ xc) / (xc @ xc)
+    r = lines - lines.mean(axis=1, keepdims=True) - slope[:, None] * xc[None, :]
+    ra = np.mean(np.abs(r), axis=1)
+    rt = r.max(axis=1) - r.min(axis=1)
+    parts = np.array_split(np.arange(r.shape[1]), n_sampling)
+    rz = np.mean([r[:, p].max(axis=1) - r[:, p].min(axis=1) for p in parts], axis=0)
+    return {"Ra": float(ra.mean()), "Rz": float(rz.mean()), "Rt": float(rt.mean())}
 
 
 def roughness(

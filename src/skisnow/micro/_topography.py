@@ -102,6 +102,16 @@ def make_topography(
     return Topography(heights=h, dx=float(dx), dy=float(dy), source=source)
 
 
+def _import_surface_topography():  # -> module
+    """Import SurfaceTopography quietly: its MPI layer (NuMPI) warns at import time that mpi4py
+    is absent and falls back to a serial stub, which is what skisnow wants."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        import SurfaceTopography
+        from SurfaceTopography import open_topography  # noqa: F401  (loads the readers)
+    return SurfaceTopography
+
+
 def _pixel_pair(pixel_size: float | tuple[float, float]) -> tuple[float, float]:
     if np.isscalar(pixel_size):
         return float(pixel_size), float(pixel_size)  # type: ignore[arg-type]
@@ -176,8 +186,10 @@ def _load_text(path: Path) -> np.ndarray:
 def _read_with_surface_topography(path: Path, *, channel: int) -> Topography:
     name = str(path)
     try:
-        from SurfaceTopography import open_topography
+        st = _import_surface_topography()
         from SurfaceTopography.Exceptions import ReadFileError
+
+        open_topography = st.open_topography
     except ImportError as exc:  # pragma: no cover - it is a hard dependency
         raise FileFormatError(f"{name}: SurfaceTopography is needed to read it ({exc})") from exc
     try:
@@ -236,7 +248,7 @@ def write_topography(topo: Topography, path: str | Path) -> Path:
 def to_surface_topography(topo: Topography):  # -> SurfaceTopography.Topography
     """The same map as a (non-periodic) SurfaceTopography ``Topography`` in metres; missing
     pixels become masked."""
-    from SurfaceTopography import Topography as STTopography
+    STTopography = _import_surface_topography().Topography
 
     h = np.ma.masked_invalid(np.asarray(topo.heights))
     if not np.ma.is_masked(h):

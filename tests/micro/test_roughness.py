@@ -1,0 +1,120 @@
+"""Roughness parameters against analytic surfaces; synthesis → analysis round trips."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from skisnow.micro import (
+    PRESETS,
+    GrindSpec,
+    GroovePass,
+    areal_parameters,
+    grind,
+    grind_preset,
+    line_parameters,
+    lowpass,
+    make_topography,
+    roughness,
+    scherge2021,
+)
+
+
+def _sine(
+    amplitude: float, wavelength: float, n: int = 400, dx: float = 1e-6, phase: float = 0.0
+) -> object:
+    x = np.arange(n) * dx
+    h = amplitude * np.sin(2 * np.pi * x / wavelength + phase)[:, None] * np.ones((1, 64))
+    return make_topography(h, dx=dx)
+
+
+def test_sine_amplitude_parameters() -> None:
+    a, lam, dx = 2e-6, 40e-6, 1e-6  # 10 full periods on 400 pixels
+    p = areal_parameters(_sine(a, lam))
+    # Sq: the discrete mean of sin² over whole periods is exactly 1/2
+    assert p["Sq"] == pytest.approx(a / np.sqrt(2), rel=1e-12)
+    # Sa: N = 40 samples per period starting at a zero give exactly A·2·cot(π/N)/N, which
+    # tends to the continuum 2A/π (0.2 % below it here)
+    n_per = round(lam / dx)
+    assert p["Sa"] == pytest.approx(a * 2 / np.tan(np.pi / n_per) / n_per, rel=1e-12)
+    assert p["Sa"] == pytest.approx(2 * a / np.pi, rel=3e-3)
+    assert p["Ssk"] == pytest.approx(0.0, abs=1e-9)
+    assert p["Sku"] == pytest.approx(1.5, rel=1e-9)  # ⟨sin⁴⟩/⟨sin²⟩² = 3/8 / 1/4
+    # Sdq: forward differences of a sine have rms (2/dx)·sin(π dx/λ)·A/√2 over whole periods;
+    # the open map has 399 differences, not 400, so the cos² average is off by < 1/399
+    exact_fd = (2 / dx) * np.sin(np.pi * dx / lam) * a / np.sqrt(2)
+    assert p["Sdq"] == pytest.approx(exact_fd, rel=2.5e-3)
+    # continuum 2πA/(λ√2): finite differences lose (π dx/λ)²/6 = 0.1 %, the open end < 0.25 %
+    assert p["Sdq"] == pytest.approx(2 * np.pi * a / lam / np.sqrt(2), rel=4e-3)
+
+
+def test_paraboloid_moments() -> None:
+    # h = c·(x² + y²) on a square [-L, L]²: mean 2cL²/3; variance of x² is 4L⁴/45 per axis
+    n, dx, c = 401, 1e-6, 1e3
+    x = (np.arange(n) - n // 2) * dx
+    half = x[-1]
+    h = c * (x[:, None] ** 2 + x[None, :] ** 2)
+    p = areal_parameters(make_topography(h, dx=dx))
+    sq_exact = c * np.sqrt(2 * 4 * half**4 / 45)
+    assert p["Sq"] == pytest.approx(sq_exact, rel=5e-3)  # 401² samples vs the continuum
+    # rms gradient: ⟨(2cx)² + (2cy)²⟩ = 8c²L²/3
+    assert p["Sdq"] == pytest.approx(np.sqrt(8 * c * c * half**2 / 3), rel=5e-3)
+
+
+def test_line_parameters_of_a_sine() -> None:
+    a, lam = 1.5e-6, 50e-6
+    # a cosine: its least-squares mean line over whole periods is flat (∫x·cos kx = 0), so
+    # ISO 4287's line removal does not tilt it (a sine's would, by 0.5 % here)
+    t = _sine(a, lam, n=500, phase=np.pi / 2)
+    line = line_parameters(t, axis=0)
+    assert line["Ra"] == pytest.approx(2 * a / np.pi, rel=3e-3)  # 50 samples per period
+    # each of the 5 sampling lengths (100 µm) holds two full periods: peak-to-valley 2A
+    # the sampled cosine's least-squares line keeps an O(1/N) tilt, worth < 1 % of 2A over
+    # the whole profile (Rt) and less within one sampling length (Rz)
+    assert line["Rz"] == pytest.approx(2 * a, rel=5e-3)
+    assert line["Rt"] == pytest.approx(2 * a, rel=1e-2)
+
+
+def test_lowpass_separates_wavelengths() -> None:
+    n, dx = 512, 1e-6
+    x = (np.arange(n) + 0.5) * dx
+    long_ = 1e-6 * np.cos(np.pi * 8 * x / (n * dx))  # λ = 128 µm, a DCT basis function
+    short = 0.3e-6 * np.cos(np.pi * 64 * x / (n * dx))  # λ = 16 µm
+    t = make_topography((long_ + short)[:, None] * np.ones((1, 8)), dx=dx)
+    out = np.asarray(lowpass(t, cutoff=33e-6).heights)[:, 0]
+    np.testing.assert_allclose(out, long_, atol=1e-15)  # exact: both are DCT-II modes
+
+
+def test_parabolic_groove_round_trip() -> None:
+    # uniform position across a parabolic groove of full width: Ssk = 0.639, Sku = 2.143,
+    # Ra = 4d/(9√3) (the moments of v², v uniform on [-1, 1])
+    spec = GrindSpec("t", "", (GroovePass(pitch=50e-6, depth=6e-6),))
+    t = grind(spec, shape=(1000, 16), dx=0.5e-6)
+    p = areal_parameters(t)
+    # 100 samples per groove, sampled on a grid that includes the cusps: moments within 0.5 %
+    assert p["Ssk"] == pytest.approx(0.6389, rel=5e-3)
+    assert p["Sku"] == pytest.approx(2.1429, rel=5e-3)
+    line = line_parameters(t, axis=0, n_sampling=5)
+    assert line["Ra"] == pytest.approx(4 * 6e-6 / (9 * np.sqrt(3)), rel=5e-3)
+
+
+def test_grinding_is_seeded() -> None:
+    a = grind_preset("S2", size=200e-6, dx=2e-6, seed=3)
+    b = grind_preset("S2", size=200e-6, dx=2e-6, seed=3)
+    c = grind_preset("S2", size=200e-6, dx=2e-6, seed=4)
+    np.testing.assert_array_equal(a.heights, b.heights)
+    assert not np.array_equal(a.heights, c.heights)
+
+
+@pytest.mark.slow
+def test_presets_in_table1_ranges() -> None:
+    """Line roughness of S1–S5 after the seed's processing lies in Table 1's ranges."""
+    ra_lo, ra_hi = min(scherge2021.TABLE1_RA_UM.values()), max(scherge2021.TABLE1_RA_UM.values())
+    rz_lo, rz_hi = min(scherge2021.TABLE1_RZ_UM.values()), max(scherge2021.TABLE1_RZ_UM.values())
+    for name in PRESETS:
+        r = roughness(grind_preset(name))
+        assert ra_lo <= r.Ra * 1e6 <= ra_hi, (name, r.Ra)
+        assert rz_lo <= r.Rz * 1e6 <= 13.0, (name, r.Rz)
+        assert rz_hi <= 13.0
+        # areal values "near Table 4": Sa within a factor 2, Sdq within 0.1–0.25
+        assert 0.8 <= r.Sa * 1e6 <= 3.5 and 0.1 <= r.Sdq <= 0.25, (name, r.Sa, r.Sdq)
