@@ -46,20 +46,20 @@ def contact(
         Path | None,
         typer.Option("--profile", help="CSV of a rigid loaded profile: columns x_mm,height_mm."),
     ] = None,
-    mass_kg: Annotated[float, typer.Option("--mass-kg", help="Load m [kg] (W = m·g).")] = ...,  # type: ignore[assignment]
+    mass_kg: Annotated[float, typer.Option("--mass-kg", help="Load m in kg (W = m·g).")] = ...,  # type: ignore[assignment]
     load_position_mm: Annotated[
         float,
         typer.Option(
-            "--load-position-mm", help="x_m [mm] from the balance point, + toward the tip."
+            "--load-position-mm", help="x_m in mm from the balance point, + toward the tip."
         ),
     ] = ...,  # type: ignore[assignment]
     snow_modulus_mpa: Annotated[
-        float, typer.Option("--snow-modulus-mpa", help="Elastic modulus of the snow [MPa].")
+        float, typer.Option("--snow-modulus-mpa", help="Elastic modulus of the snow in MPa.")
     ] = ...,  # type: ignore[assignment]
     model: Annotated[
         str, typer.Option("--model", help="strip (1D, fast) or surface (2D grid across).")
     ] = "strip",
-    width_mm: Annotated[float, typer.Option("--width-mm", help="Ski width [mm].")] = 44.0,
+    width_mm: Annotated[float, typer.Option("--width-mm", help="Ski width in mm.")] = 44.0,
     profile_source: Annotated[
         str,
         typer.Option(
@@ -67,7 +67,7 @@ def contact(
         ),
     ] = "beam",
     base_modulus_mpa: Annotated[
-        float, typer.Option("--base-modulus-mpa", help="Ski base modulus [MPa] (eq. 2).")
+        float, typer.Option("--base-modulus-mpa", help="Ski base modulus in MPa (eq. 2).")
     ] = 900.0,
     points: Annotated[
         int, typer.Option("--points", help="Stations along the ski (with --ski).")
