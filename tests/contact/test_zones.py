@@ -157,3 +157,17 @@ def test_the_papers_findings_on_the_virtual_skis() -> None:
     for zone in ("rear", "front"):
         assert soft[zone].length > hard[zone].length
         assert soft[zone].mean_pressure < hard[zone].mean_pressure
+
+
+def test_zone_lengths_converge_under_refinement() -> None:
+    # skate, 30 kg at −120 mm, 100 MPa, strip model at 512…2048 stations against 8192: every
+    # zone length within 1.5 stations of the fine answer (measured ≤ 1 station) and load shares
+    # within 1e-3 (measured < 1e-5).
+    fine = _zones("skate", 30, -0.12, 100e6, n=8192)
+    ski = get_ski("skate")
+    for n in (512, 1024, 2048):
+        coarse = _zones("skate", 30, -0.12, 100e6, n=n)
+        dx = (ski.x_tip - ski.x_tail) / n
+        for zone in ("rear", "front", "total"):
+            assert abs(coarse[zone].length - fine[zone].length) <= 1.5 * dx
+            assert abs(coarse[zone].load_share - fine[zone].load_share) < 1e-3
