@@ -162,7 +162,7 @@ def test_the_papers_findings_on_the_virtual_skis() -> None:
 def test_zone_lengths_converge_under_refinement() -> None:
     # skate, 30 kg at −120 mm, 100 MPa, strip model at 512…2048 stations against 8192: every
     # zone length within 1.5 stations of the fine answer (measured ≤ 1 station) and load shares
-    # within 1e-3 (measured < 1e-5).
+    # within 1e-3 (measured 1.2e-5 at 512, 2.2e-6 at 1024, 8.7e-7 at 2048 stations).
     fine = _zones("skate", 30, -0.12, 100e6, n=8192)
     ski = get_ski("skate")
     for n in (512, 1024, 2048):
