@@ -1,0 +1,170 @@
+"""Accuracy and training time of the camber network against the beam truth (issue 4).
+
+    uv run python benchmarks/bench_network.py             # evaluate the shipped networks
+    uv run python benchmarks/bench_network.py --retrain   # train both skis (timed), evaluate
+    uv run python benchmarks/bench_network.py --retrain --save   # ... and ship the result
+
+Held-out load conditions NOT on the bench grid: masses halfway between the 5 kg bench steps
+(7.5, 32.5, 62.5, 97.5, 127.5 kg) × positions halfway between the 40 mm bench steps (-60, -100,
+-140, -180, -220 mm) = 25 load cases per ski; noise-free bench; truth = the beam model
+(``solve_beam(...).sample``) on the bench's 1 mm grid. Errors |h_pred - h_beam| in µm over all
+points of all 25 profiles: mean, 95th percentile, max, and the mean where h_beam < 0.2 mm
+(near contact). Baseline in the same table: bilinear interpolation in (m, x_m) between the four
+nearest bench profiles. Target (issue 4): mean < 5 µm, near-contact mean < 2 µm; training
+< 3 min per ski on the 2-core machine.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import time
+from pathlib import Path
+
+import numpy as np
+
+from skisnow.ski import DEFAULT_LOAD_POSITIONS, DEFAULT_MASSES, get_ski, run_bench, solve_beam
+
+TEST_MASSES = (7.5, 32.5, 62.5, 97.5, 127.5)
+TEST_POSITIONS = (-0.060, -0.100, -0.140, -0.180, -0.220)
+MODELS = Path(__file__).resolve().parents[1] / "src" / "skisnow" / "ski" / "models"
+
+#: Settings of the shipped networks (see README "Camber network").
+SHIPPED_SETTINGS = {
+    "seed": 0,
+    "architecture": "6,16,16,16,12,12",
+    "adam_steps": 600,
+    "lm_steps": 200,
+    "lm_points": 3000,
+    "contact_weight": 4.0,
+}
+
+
+def bench_cube(bench) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """(masses, positions [m], x [m], heights [m] of shape (n_pos, n_mass, n_x)) of a bench."""
+    t = bench.table
+    ms = np.unique(t["mass_kg"].to_numpy())
+    ps = np.unique(t["load_position_mm"].to_numpy()) * 1e-3
+    xs = np.unique(t["x_mm"].to_numpy()) * 1e-3
+    t = t.sort_values(["load_position_mm", "mass_kg", "x_mm"])
+    h = t["height_mm"].to_numpy().reshape(ps.size, ms.size, xs.size) * 1e-3
+    return ms, ps, xs, h
+
+
+def interpolate_bench(cube, mass: float, position: float) -> np.ndarray:
+    """Baseline: bilinear interpolation in (m, x_m) between the four nearest bench profiles."""
+    ms, ps, _, h = cube
+    i = int(np.clip(np.searchsorted(ps, position) - 1, 0, ps.size - 2))
+    j = int(np.clip(np.searchsorted(ms, mass) - 1, 0, ms.size - 2))
+    tp = (position - ps[i]) / (ps[i + 1] - ps[i])
+    tm = (mass - ms[j]) / (ms[j + 1] - ms[j])
+    return (
+        (1 - tp) * (1 - tm) * h[i, j]
+        + (1 - tp) * tm * h[i, j + 1]
+        + tp * (1 - tm) * h[i + 1, j]
+        + tp * tm * h[i + 1, j + 1]
+    )
+
+
+def error_stats(err: np.ndarray, truth: np.ndarray) -> dict[str, float]:
+    e = 1e6 * np.abs(err)
+    near = truth < 0.2e-3
+    return {
+        "mean": float(e.mean()),
+        "p95": float(np.percentile(e, 95)),
+        "max": float(e.max()),
+        "near_mean": float(e[near].mean()),
+        "near_max": float(e[near].max()),
+    }
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    ap.add_argument("--retrain", action="store_true", help="train both skis (timed)")
+    ap.add_argument("--save", action="store_true", help="with --retrain: overwrite shipped models")
+    ap.add_argument("--skis", default="classic,skate")
+    args = ap.parse_args()
+
+    from rich.console import Console
+    from rich.table import Table
+
+    from skisnow.ski import save_network, shipped_network, train_network
+
+    console = Console()
+    console.print(f"load before: {os.getloadavg()}  (2-core machine shared with other engineers)")
+    rows = []
+    for name in args.skis.split(","):
+        ski = get_ski(name)
+        t0 = time.perf_counter()
+        bench = run_bench(ski, masses=DEFAULT_MASSES, load_positions=DEFAULT_LOAD_POSITIONS)
+        t_bench = time.perf_counter() - t0
+        cube = bench_cube(bench)
+        x = cube[2]
+        if args.retrain:
+            t0 = time.perf_counter()
+
+            def report(p, name: str = name, t0: float = t0) -> None:
+                if p.phase == "lm" or p.step % 200 == 0:
+                    console.print(
+                        f"{name} {p.phase} {p.step}/{p.total}: train rms {p.train_rms_um:.2f} µm,"
+                        f" held-out mean {p.val_mean_um:.2f} µm max {p.val_max_um:.1f} µm"
+                        f" ({time.perf_counter() - t0:.0f} s)",
+                        highlight=False,
+                    )
+
+            net = train_network(bench, progress=report, **SHIPPED_SETTINGS)
+            t_train = time.perf_counter() - t0
+            if args.save:
+                save_network(net, MODELS / name)
+        else:
+            net = shipped_network(name)
+            t_train = float(net.metadata.get("training_time_s", float("nan")))
+        truth, pred, base = [], [], []
+        t0 = time.perf_counter()
+        masses, positions = np.meshgrid(TEST_MASSES, TEST_POSITIONS)
+        masses, positions = masses.ravel(), positions.ravel()
+        pred = net.predict(x, masses, positions)  # all 25 cases in one vectorised call
+        t_pred = time.perf_counter() - t0
+        for m, p in zip(masses, positions, strict=True):
+            truth.append(solve_beam(ski, mass=float(m), load_position=float(p)).sample(x))
+            base.append(interpolate_bench(cube, float(m), float(p)))
+        truth, base = np.array(truth), np.array(base)
+        for label, est in (("network", pred), ("bench interpolation", base)):
+            s = error_stats(est - truth, truth)
+            rows.append(
+                [
+                    name,
+                    label,
+                    f"{s['mean']:.2f}",
+                    f"{s['p95']:.2f}",
+                    f"{s['max']:.1f}",
+                    f"{s['near_mean']:.2f}",
+                    f"{s['near_max']:.1f}",
+                    f"{t_train:.0f}" if label == "network" else f"{t_bench:.0f} (bench)",
+                    f"{1e3 * t_pred:.0f}" if label == "network" else "—",
+                ]
+            )
+    table = Table(
+        title="Camber network vs beam truth: 25 held-out load cases per ski, off the bench grid"
+    )
+    for col in (
+        "ski",
+        "estimate",
+        "mean |err| µm",
+        "p95 µm",
+        "max µm",
+        "mean h<0.2mm µm",
+        "max h<0.2mm µm",
+        "train s",
+        "predict 25×x ms",
+    ):
+        table.add_column(col, justify="right")
+    for r in rows:
+        table.add_row(*r)
+    console.print(table)
+    console.print("target: mean < 5 µm, near-contact mean < 2 µm; training < 180 s per ski")
+    console.print(f"load after: {os.getloadavg()}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,123 @@
+"""The train / predict commands: in process via skisnow.cli.main, plus one real subprocess."""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from skisnow.cli import main
+
+
+def test_predict_shipped_json(capsys):
+    """`predict classic --json` prints one JSON document with the profile in field units."""
+    code = main(["predict", "classic", "--mass-kg", "60", "--load-position-mm", "-120", "--json"])
+    out = capsys.readouterr()
+    assert code == 0, out.err
+    doc = json.loads(out.out)
+    assert doc["ski"] == "classic" and doc["in_trained_domain"]
+    h = np.array(doc["height_mm"])
+    x = np.array(doc["x_mm"])
+    assert h.shape == x.shape and np.all(h >= 0)
+    assert np.allclose(np.diff(x), 1.0)  # the default 1 mm output step
+
+
+def test_predict_outside_domain_warns_or_refuses(capsys):
+    code = main(["predict", "skate", "--mass-kg", "200", "--load-position-mm", "-120", "--json"])
+    out = capsys.readouterr()
+    assert code == 0
+    assert not json.loads(out.out)["in_trained_domain"]
+    assert "outside" in out.err
+    code = main(["predict", "skate", "--mass-kg", "200", "--load-position-mm", "-120", "--strict"])
+    out = capsys.readouterr()
+    assert code == 1 and "mass 200 kg outside the trained 5..130 kg" in out.err
+    assert "Traceback" not in out.err
+
+
+def test_train_then_predict_with_figure(tmp_path, small_bench, capsys):
+    from skisnow.io import write_bench
+
+    bench = tmp_path / "bench.csv"
+    write_bench(small_bench, bench)
+    model = tmp_path / "small"
+    code = main(
+        [
+            "train",
+            str(bench),
+            "--out",
+            str(model),
+            "--widths",
+            "3,6,6,6,4,4",
+            "--adam-steps",
+            "100",
+            "--lm-steps",
+            "5",
+            "--json",
+        ]
+    )
+    out = capsys.readouterr()
+    assert code == 0, out.err
+    doc = json.loads(out.out)
+    assert doc["widths"] == [3, 6, 6, 6, 4, 4] and doc["ski"] == "classic"
+    assert (tmp_path / "small.npz").exists() and (tmp_path / "small.json").exists()
+    fig = tmp_path / "profile.png"
+    code = main(
+        [
+            "predict",
+            str(model) + ".npz",
+            "--mass-kg",
+            "55",
+            "--load-position-mm",
+            "-130",
+            "--figure",
+            str(fig),
+        ]
+    )
+    assert code == 0, capsys.readouterr().err
+    assert fig.stat().st_size > 1000
+
+
+def test_bad_bench_file_and_corrupt_model(tmp_path, capsys):
+    bad = tmp_path / "bad.csv"
+    bad.write_text("ski,mass_kg,x_mm\nclassic,5,0\n")
+    code = main(["train", str(bad), "--out", str(tmp_path / "m")])
+    err = capsys.readouterr().err
+    assert code == 1 and "Traceback" not in err and "bad.csv" in err
+    (tmp_path / "m.npz").write_bytes(b"PK\x03\x04 not really a zip")
+    (tmp_path / "m.json").write_text('{"format": "skisnow-camber-network"}')
+    code = main(["predict", str(tmp_path / "m"), "--mass-kg", "50", "--load-position-mm", "-100"])
+    err = capsys.readouterr().err
+    assert code == 1 and "corrupt or truncated" in err and "Traceback" not in err
+    code = main(["predict", "nonexistent", "--mass-kg", "50", "--load-position-mm", "-100"])
+    err = capsys.readouterr().err
+    assert code == 1 and "neither a shipped ski" in err
+    code = main(["train", str(bad), "--out", str(tmp_path / "m"), "--widths", "1,2,3"])
+    assert code == 1
+
+
+@pytest.mark.slow
+def test_subprocess_smoke():
+    """The installed entry point runs in a fresh interpreter and keeps stdout pure JSON."""
+    res = subprocess.run(
+        [
+            sys.executable,
+            "-c",
+            "from skisnow.cli import main; raise SystemExit(main())",
+            "predict",
+            "skate",
+            "--mass-kg",
+            "70",
+            "--load-position-mm",
+            "-100",
+            "--json",
+        ],
+        capture_output=True,
+        text=True,
+        timeout=300,
+        check=False,
+    )
+    assert res.returncode == 0, res.stderr
+    assert json.loads(res.stdout)["ski"] == "skate"
