@@ -863,6 +863,8 @@ def solve_contact(
 #: below these sizes the multilevel start is not worth it (cells along x; cells in total)
 _COARSE_MIN_1D = 512
 _COARSE_MIN_2D = 128 * 128
+#: tolerance of the coarse solves (they only provide the start)
+_COARSE_TOL = 1e-6
 
 
 def _coarse_start(
@@ -923,7 +925,7 @@ def _coarse_start(
             modulus=modulus,
             model=model,  # type: ignore[arg-type]
             control=control,  # type: ignore[arg-type]
-            tol=max(tol, 1e-8),
+            tol=max(tol, _COARSE_TOL),
             edge_contact="allow",
             reference_length=reference_length,
             workers=workers,
