@@ -190,7 +190,7 @@ def elastoplastic_contact(
     while solve_at(lo) < 0:  # expand downward until the load is exceeded
         hi, step = lo, 2.0 * step
         lo = hi - step
-    approach = brentq(solve_at, lo, hi, xtol=tol * scale, rtol=1e-14, maxiter=200)
+    approach = brentq(solve_at, lo, hi, xtol=1e-6 * tol * scale, rtol=1e-14, maxiter=200)
     solve_at(approach)
     p = state["p"]
     residual = float(state["residual"])
