@@ -22,7 +22,7 @@ the current contact set, replaces the mean gap; the search direction and its ima
 the same way; after each step the two constraints are restored by multiplying p by an affine
 factor α + β(x − x_m) (β = 0 is Polonsky–Keer's load rescaling). No outer loop on θ.
 The CG is preconditioned with the circulant inverse of the half-space operator (the inverse
-Fourier symbol, in the spirit of Vollebregt 2014, J. Optim. Theory Appl. 162, "A new solver for
+Fourier symbol, in the spirit of Vollebregt 2014, J. Comput. Phys. 257, "A new solver for
 the elastic normal contact problem using conjugate gradients, deflation, and an FFT-based
 preconditioner"), and u = K p is updated from K t (one FFT pair a step, plus the
 preconditioner's) while the contact set holds; a coarse-grid solution is the start on large
