@@ -130,10 +130,7 @@ class ContactSolution:
     def line_load(self) -> np.ndarray:
         """Force per unit length along the ski q(x) [N/m] (pressure integrated across the width)."""
         if self.pressure.ndim == 2:
-            assert self.y is not None
-            return self.pressure.sum(axis=1) * float(
-                self.y[1] - self.y[0] if self.y.size > 1 else 1
-            )
+            return self.pressure.sum(axis=1) * (self.cell_area / self.dx)
         return self.pressure * np.asarray(self.width, dtype=float)
 
     @property

@@ -231,7 +231,7 @@ def contact_zones(
     p = solution.pressure
     if p.ndim == 2:
         assert solution.y is not None
-        dy = float(solution.y[1] - solution.y[0]) if solution.y.size > 1 else float(solution.width)
+        dy = solution.cell_area / dx
         contact = p > 0
         along = contact.any(axis=1)
         line_area = contact.sum(axis=1) * dx * dy
