@@ -238,6 +238,7 @@ def test_surface_model_balance_with_width_profile() -> None:
     assert abs(sol.total_moment) < 1e-8 * 300.0 * 2.0
     assert np.all(sol.pressure[~sol.footprint] == 0)
     assert sol.pressure.shape == (256, 8)
+    assert np.sum(sol.line_load) * sol.dx == pytest.approx(300.0, rel=1e-12)
 
 
 # ---- bad input ---------------------------------------------------------------------------------
