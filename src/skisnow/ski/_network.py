@@ -418,9 +418,20 @@ class CamberNetwork:
             warnings.warn(msg + " (extrapolation; accuracy unknown)", DomainWarning, stacklevel=3)
         s = self.scaling
         xs, ms, ps = s.scale_inputs(x, m, p)
+        # Pad to bucketed shapes (x: multiple of 256, cases: power of 2) so that one compiled
+        # kernel serves many grid sizes and stride lengths; the padding is sliced off.
+        n, k = xs.size, ms.size
+        n_pad, k_pad = -(-n // 256) * 256, 1 << max(0, (k - 1).bit_length())
+        xs_p = np.pad(xs, (0, n_pad - n), mode="edge")
+        ms_p, ps_p = (
+            np.pad(ms, (0, k_pad - k), mode="edge"),
+            np.pad(ps, (0, k_pad - k), mode="edge"),
+        )
         with x64():
-            out = _ensemble_grid(self.members, jnp.asarray(xs), jnp.asarray(ms), jnp.asarray(ps))
-            out = np.asarray(out, dtype=float)
+            out = _ensemble_grid(
+                self.members, jnp.asarray(xs_p), jnp.asarray(ms_p), jnp.asarray(ps_p)
+            )
+            out = np.asarray(out, dtype=float)[:, :k, :n]
         h = s.unscale_height(out)
         if self.reference is not None:
             h = h + self.reference(x)
