@@ -1,9 +1,11 @@
-"""No work lost: a REAL sweep process (the CLI on a local Dask cluster) is killed with SIGKILL
-mid-way, then the same command is run again. It must compute exactly the chunks that were not
-finished (0 finished chunks recomputed) and end with the same dataset as an uninterrupted run."""
+"""No work lost: a REAL sweep process (the CLI on a local Dask cluster) is interrupted with Ctrl-C
+(SIGINT to its process group, as a terminal does), restarted and then killed with SIGKILL, then
+the same command is run again. Each restart must compute only chunks that were not finished
+(0 finished chunks recomputed) and the end result must be the dataset of an uninterrupted run."""
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import signal
@@ -16,14 +18,15 @@ import numpy as np
 import pytest
 import xarray as xr
 
+from skisnow import InputError
 from skisnow.cli import main
 from skisnow.sweep import SweepSpec, open_sweep, run_sweep
 from skisnow.sweep._store import done_chunks
 
-MASSES, MODULI = "5:60:5", "20:200:20"  # 12 masses × 10 moduli = 10 chunks of 12 solves
+# 12 masses × 20 moduli = 20 chunks of 12 solves each
 ARGS = [
-    "sweep", "--ski", "skate", "--mass-kg", MASSES, "--load-position-mm", "-120",
-    "--snow-modulus-mpa", MODULI, "--n-points", "2048", "--profile-source", "beam",
+    "sweep", "--ski", "skate", "--mass-kg", "5:60:5", "--load-position-mm", "-120",
+    "--snow-modulus-mpa", "20:400:20", "--n-points", "1024", "--profile-source", "beam",
     "--workers", "1",
 ]  # fmt: skip
 CMD = [sys.executable, "-c", "from skisnow.cli import main; raise SystemExit(main())"]
@@ -34,51 +37,78 @@ def _spec() -> SweepSpec:
         skis=("skate",),
         masses=np.arange(5.0, 61.0, 5.0),
         load_positions=(-0.12,),
-        snow_moduli=np.arange(20.0, 201.0, 20.0) * 1e6,
-        n_points=2048,
+        snow_moduli=np.arange(20.0, 401.0, 20.0) * 1e6,
+        n_points=1024,
         profile_source="beam",
     )
 
 
-@pytest.mark.slow
-def test_sigkill_mid_sweep_then_resume(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
-    store = tmp_path / "fig8.zarr"
-    spec = _spec()
-    n_chunks = len(spec.chunks())
+def _interrupt(store: Path, spec: SweepSpec, sig: int, at_least: int) -> tuple[int, str]:
+    """Start the sweep, wait until ``at_least`` chunks are marked done, send ``sig`` to its
+    process group; return (exit code, stderr)."""
     proc = subprocess.Popen(
         [*CMD, *ARGS, "--out", str(store)],
         stdout=subprocess.DEVNULL,
         stderr=subprocess.PIPE,
-        start_new_session=True,  # its own process group: the kill takes its Dask workers too
+        text=True,
+        start_new_session=True,  # its own process group, like a terminal job with its workers
     )
     try:
-        deadline = time.monotonic() + 90
+        deadline = time.monotonic() + 120
         while time.monotonic() < deadline:
-            if (store / "chunk_done").exists() and len(done_chunks(store, spec)) >= 2:
+            if (store / "chunk_done").exists() and len(done_chunks(store, spec)) >= at_least:
                 break
             if proc.poll() is not None:
-                pytest.fail(f"sweep ended before it could be killed: {proc.stderr.read()!r}")
-            time.sleep(0.05)
+                pytest.fail(f"sweep ended before it could be interrupted: {proc.stderr.read()}")
+            time.sleep(0.02)
         else:
-            pytest.fail("no chunk finished within 90 s")
+            pytest.fail("the sweep made no progress within 120 s")
     finally:
-        os.killpg(proc.pid, signal.SIGKILL)
-        proc.wait()
+        os.killpg(proc.pid, sig)
+        try:
+            code = proc.wait(timeout=60)
+        except subprocess.TimeoutExpired:
+            os.killpg(proc.pid, signal.SIGKILL)
+            code = proc.wait()
+        err = proc.stderr.read()
         proc.stderr.close()
-    finished = done_chunks(store, spec)
-    assert 2 <= len(finished) < n_chunks, f"killed too late: {len(finished)} of {n_chunks} done"
-    with pytest.raises(Exception, match="not computed yet"):
+        if sig != signal.SIGKILL:  # workers that outlived the interrupted client
+            with contextlib.suppress(ProcessLookupError):
+                os.killpg(proc.pid, signal.SIGKILL)
+    return code, err
+
+
+@pytest.mark.slow
+def test_ctrl_c_then_sigkill_then_resume(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    store = tmp_path / "fig8.zarr"
+    spec = _spec()
+    everything = set(spec.chunks())
+
+    # 1. Ctrl-C: a clean, non-zero exit that says what was kept
+    code, err = _interrupt(store, spec, signal.SIGINT, at_least=1)
+    after_ctrl_c = done_chunks(store, spec)
+    assert code != 0 and "interrupted" in err, err[-500:]
+    assert 1 <= len(after_ctrl_c) < len(everything)
+
+    # 2. restarted, then SIGKILLed (no chance to clean up, workers included)
+    code, _ = _interrupt(store, spec, signal.SIGKILL, at_least=len(after_ctrl_c) + 2)
+    after_kill = done_chunks(store, spec)
+    assert code == -signal.SIGKILL
+    assert after_ctrl_c < after_kill < everything, "killed too late to test resuming"
+    with pytest.raises(InputError, match="not computed yet"):
         open_sweep(store)
 
-    # The same command again (in this process, to save an interpreter start-up; it still starts
-    # its own local cluster of one worker process).
+    # 3. the same command again (in this process, to save an interpreter start-up; it starts
+    # its own local cluster): exactly the missing chunks are computed
     capsys.readouterr()
     assert main([*ARGS, "--out", str(store), "--json"]) == 0
     doc = json.loads(capsys.readouterr().out)
     recomputed = {tuple(k) for k in doc["computed"]}
-    assert recomputed.isdisjoint(finished), "a finished chunk was recomputed"
-    assert recomputed | finished == set(spec.chunks())
-    assert doc["skipped_chunks"] == len(finished)
+    assert recomputed.isdisjoint(after_kill), "a finished chunk was recomputed"
+    assert recomputed | after_kill == everything
+    assert doc["skipped_chunks"] == len(after_kill)
 
     # the same dataset as an uninterrupted run (computed here, in process, without Dask)
     reference = tmp_path / "reference.zarr"

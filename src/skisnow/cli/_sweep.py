@@ -7,6 +7,7 @@ from typing import Annotated
 
 import typer
 
+from skisnow._errors import SkisnowError
 from skisnow.cli._app import app
 from skisnow.cli._render import emit_json, err_console, print_table
 
@@ -99,8 +100,18 @@ def sweep(
 
     try:
         run = run_sweep(spec, out, scheduler=scheduler, workers=workers, on_progress=on_progress)
-    finally:
+    except KeyboardInterrupt:
+        # Raised as an error (exit 1): Typer turns Ctrl-C into a *returned* 130, which
+        # ``cli.main`` does not propagate. Say what was kept.
         if task:
+            bar.stop()
+        done = bar.tasks[0].completed if task else 0
+        raise SkisnowError(
+            f"sweep interrupted (Ctrl-C); {done:g} chunks of this run are safely in {out}; run "
+            "the same command again to compute only the rest"
+        ) from None
+    finally:
+        if task and bar.live.is_started:
             bar.stop()
     exported = None
     if netcdf is not None:
