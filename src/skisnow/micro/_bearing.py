@@ -188,8 +188,10 @@ def _select(
     rows = np.arange(f.shape[0])
     ftop = np.take_along_axis(f, top, axis=1)
     wsum = w[top].sum(axis=1) + frac * w[nxt]
-    fn = ftop.min(axis=1)
     fn1 = f[rows, nxt]
+    if n == 0:  # less than one pixel: part of the highest one, at δ = 0
+        return wsum, fn1, fn1
+    fn = ftop.min(axis=1)
     level = fn - frac * (fn - fn1)  # δ interpolated between the n-th and (n+1)-th step
     return wsum, ftop.max(axis=1), level
 
@@ -362,7 +364,7 @@ def bearing_area_reference(
         fs = f[order]
         wsum[k] = ww[order[:n]].sum() + frac * ww[order[n]]
         z0[k] = fs[0]
-        level[k] = fs[n - 1] - frac * (fs[n - 1] - fs[n])
+        level[k] = fs[0] if n == 0 else fs[n - 1] - frac * (fs[n - 1] - fs[n])
     return _result(topo, diameter, pressure, hardness, pos, wsum, z0, level, nstar)
 
 
