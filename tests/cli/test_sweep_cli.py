@@ -89,7 +89,7 @@ def test_sweep_on_an_existing_scheduler(tmp_path: Path, capsys: pytest.CaptureFi
     from distributed import LocalCluster
 
     with LocalCluster(n_workers=2, threads_per_worker=1, processes=False,
-                      dashboard_address=None) as cluster:  # fmt: skip
+                      dashboard_address=":0") as cluster:  # fmt: skip
         args = ["sweep", *SMALL, "--scheduler", cluster.scheduler_address, "--json"]
         assert main([*args, "--out", str(tmp_path / "s.zarr")]) == 0
     doc = _json(capsys)

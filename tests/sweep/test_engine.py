@@ -107,7 +107,7 @@ def test_dask_cluster_gives_the_same_dataset(tmp_path: Path) -> None:
     run_sweep(spec, tmp_path / "a.zarr", chunk_function=hertz_chunk, workers=0)
     with (
         LocalCluster(
-            n_workers=2, threads_per_worker=1, processes=False, dashboard_address=None
+            n_workers=2, threads_per_worker=1, processes=False, dashboard_address=":0"
         ) as cluster,
         Client(cluster) as client,
     ):
@@ -203,7 +203,7 @@ def test_dask_retries_a_failing_chunk(tmp_path: Path) -> None:
     spec = _spec()
     run_sweep(spec, tmp_path / "ref.zarr", chunk_function=hertz_chunk, workers=0)
     with LocalCluster(n_workers=2, threads_per_worker=1, processes=False,
-                      dashboard_address=None) as cluster, Client(cluster) as client:  # fmt: skip
+                      dashboard_address=":0") as cluster, Client(cluster) as client:  # fmt: skip
         run = run_sweep(spec, tmp_path / "s.zarr", chunk_function=flaky_once, client=client,
                         retries=1)  # fmt: skip
     assert len(run.computed) == 18

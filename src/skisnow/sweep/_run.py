@@ -105,6 +105,12 @@ def prepare_store(
                 "--out"
             ) from None
         check_same_sweep(path, spec, stored)
+        if stored.get("skisnow_version") != attrs["skisnow_version"]:
+            raise InputError(
+                f"{path} was started by skisnow {stored.get('skisnow_version')}, this is "
+                f"{attrs['skisnow_version']}; resuming would mix results of two versions. Use "
+                "another --out, or delete the store to start afresh."
+            )
         if stored.get("chunk_function") != attrs["chunk_function"]:
             raise InputError(
                 f"{path} was computed with chunk function {stored.get('chunk_function')!r}, not "
@@ -153,7 +159,7 @@ def local_cluster(n_workers: int) -> Any:
             n_workers=n_workers,
             threads_per_worker=1,
             processes=True,
-            dashboard_address=None,
+            dashboard_address=":0",  # any free port: never clash with another cluster
             silence_logs=40,  # logging.ERROR
         )
 

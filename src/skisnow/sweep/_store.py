@@ -13,7 +13,9 @@ in zarr-python 3.x, which warns):
 * per chunk: ``chunk_done`` (int8, 1 = the chunk's data are completely written). It is the
   completion marker: written *after* the chunk's data, as its own uncompressed one-byte Zarr chunk,
   so a process killed at any instant leaves either a complete chunk with its marker, or a chunk
-  without its marker (recomputed on resume). Never a marker without its data.
+  without its marker (recomputed on resume). Never a marker without its data. (zarr-python 3's
+  LocalStore also replaces each chunk file atomically, write-then-rename; the marker reader
+  still treats an unreadable marker as "not done", for stores without that guarantee.)
 
 The store is created from a template with ``Dataset.to_zarr(compute=False)`` (metadata and
 coordinates only); each chunk is then written with ``to_zarr(region=...)``. The Zarr chunking
@@ -26,12 +28,15 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from skisnow._errors import FileFormatError, InputError
 from skisnow.sweep._grid import SweepSpec
+
+if TYPE_CHECKING:  # xarray is imported lazily: the store functions pay for it, not the package
+    import xarray as xr
 
 DIMS = ("ski", "mass_kg", "load_position_mm", "snow_modulus_mpa", "zone")
 POINT_DIMS = DIMS[:4]
@@ -85,7 +90,7 @@ def _fill(dtype: str) -> Any:
     return {"float64": np.nan, "int32": 0, "bool": False, "int8": 0}[dtype]
 
 
-def template(spec: SweepSpec, *, attrs: Mapping[str, Any]) -> Any:
+def template(spec: SweepSpec, *, attrs: Mapping[str, Any]) -> xr.Dataset:
     """The lazy (Dask-backed) full dataset of a sweep, chunked as the tasks are."""
     import dask.array as da
     import xarray as xr
@@ -202,8 +207,7 @@ def write_chunk(
         "snow_modulus_mpa": slice(k, k + 1),
         "zone": slice(0, n_zone),
     }
-    full: dict[str, Any] = {}
-    profile: dict[str, Any] = {}
+    data: dict[str, Any] = {}
     for name, var in VARIABLES.items():
         if name not in values:
             raise InputError(f"chunk function returned no {name!r} (needs {sorted(VARIABLES)})")
@@ -214,18 +218,19 @@ def write_chunk(
         # insert the singleton ski/position/modulus axes in dims order
         sizes = {"mass_kg": n_mass, "zone": n_zone}
         expanded = arr.reshape(tuple(sizes.get(d, 1) for d in var.dims))
-        (profile if "snow_modulus_mpa" not in var.dims else full)[name] = (var.dims, expanded)
+        data[name] = (var.dims, expanded)
     # One region write for all variables. The profile-only variables (no snow_modulus_mpa dim)
     # are the same for every modulus of this (ski, position): rewriting them from each chunk is
-    # idempotent and keeps every chunk self-contained.
-    xr.Dataset({**full, **profile}).to_zarr(path, region=region, consolidated=False)
+    # idempotent and keeps every chunk self-contained (each Zarr chunk file is replaced
+    # atomically by zarr's LocalStore, so a kill never leaves a torn file).
+    xr.Dataset(data).to_zarr(path, region=region, consolidated=False)
     marker = np.ones((1, 1, 1), dtype="int8")
     xr.Dataset({"chunk_done": (CHUNK_DIMS, marker)}).to_zarr(
         path, region={d: region[d] for d in CHUNK_DIMS}, consolidated=False
     )
 
 
-def open_sweep(path: str | Path, *, require_complete: bool = True) -> Any:
+def open_sweep(path: str | Path, *, require_complete: bool = True) -> xr.Dataset:
     """Open a sweep's Zarr store as an in-memory :class:`xarray.Dataset`.
 
     With ``require_complete`` (default) a store with missing chunks raises :class:`InputError`
@@ -247,7 +252,7 @@ def open_sweep(path: str | Path, *, require_complete: bool = True) -> Any:
     return ds
 
 
-def save_netcdf(ds: Any, path: str | Path) -> Path:
+def save_netcdf(ds: xr.Dataset, path: str | Path) -> Path:
     """Export a (complete) sweep dataset to NetCDF with the first engine available.
 
     The primary format is Zarr; NetCDF is an export. Engines tried: netCDF4, h5netcdf, scipy
