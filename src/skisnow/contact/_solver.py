@@ -190,7 +190,9 @@ def _uniform_grid(name: str, x: ArrayLike) -> tuple[np.ndarray, float]:
 
 
 def _dot(a: np.ndarray, b: np.ndarray) -> float:
-    """Inner product without BLAS threads (they spin and stall on a busy machine)."""
+    """Inner product; long vectors without BLAS threads (they spin and stall on a busy machine)."""
+    if a.size < 8192:
+        return float(a @ b)
     return float(np.einsum("i,i->", a, b))
 
 
