@@ -52,6 +52,21 @@ def main() -> None:
         snow_moduli=np.arange(20.0, 401.0, 20.0) * 1e6, model="strip",
         profile_source=source, n_points=args.n_points,
     )  # fmt: skip
+    # Do warm starts along the masses pay? One chunk (all masses, one modulus) in process.
+    from dataclasses import replace
+
+    from skisnow.sweep import contact_chunk
+
+    warm_rows = []
+    contact_chunk(replace(spec, masses=masses[:2]), "skate", -0.12, 100e6)  # imports, caches
+    for warm in (True, False):
+        s = replace(spec, warm_start=warm)
+        t0 = time.perf_counter()
+        out = contact_chunk(s, "skate", -0.12, 100e6)
+        dt = time.perf_counter() - t0
+        warm_rows.append((f"one chunk ({len(masses)} masses, 100 MPa), "
+                          f"{'warm' if warm else 'cold'} starts", dt,
+                          float(np.mean(out["iterations"]))))  # fmt: skip
     load_before = _uptime()
     print(f"before: {load_before}")
     print(f"sweep: {spec.n_points_total} contact solves in {len(spec.chunks())} chunks, "
@@ -103,6 +118,8 @@ def main() -> None:
         rows,
         floatfmt=".3g",
     )
+    print_table("warm starts along the load path", ["run", "time (s)", "mean iterations"],
+                warm_rows)  # fmt: skip
     speedup = times[1].compute_time / times[2].compute_time
     total1 = rows[0][4]
     total2 = rows[1][4]

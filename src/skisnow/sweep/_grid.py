@@ -95,6 +95,8 @@ class SweepSpec:
         poisson: Poisson ratio ν of both bodies (eq. 2).
         tol: tolerance of the contact solver (relative pressure change between iterations);
             1e-8 resolves areas and pressures far below what a map can show.
+        warm_start: start each contact solve from the pressure of the previous (lighter) mass
+            of the chunk; ``False`` solves every point cold (for benchmarking the warm starts).
     """
 
     skis: tuple[str, ...]
@@ -107,6 +109,7 @@ class SweepSpec:
     base_modulus: float = PAPER_BASE_MODULUS
     poisson: float = PAPER_POISSON
     tol: float = 1e-8
+    warm_start: bool = True
     zones: tuple[str, ...] = field(default=ZONES)
 
     def __post_init__(self) -> None:

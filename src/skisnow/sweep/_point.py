@@ -142,5 +142,5 @@ def contact_chunk(
         out["iterations"][a] = solution.iterations
         out["residual"][a] = solution.residual
         out["converged"][a] = solution.converged
-        previous = solution.pressure if solution.converged else None
+        previous = solution.pressure if (solution.converged and spec.warm_start) else None
     return out
