@@ -37,7 +37,7 @@ def parse_grain_range(text: str) -> np.ndarray:
         ) from None
     if values.size == 0 or np.any(values <= 0):
         raise InputError(f"--grain-um {text!r}: diameters must be positive µm")
-    return np.unique(values) * 1e-6
+    return np.unique(np.round(values, 6)) * 1e-6
 
 
 def _load(source: str, pixel_um: float | None, height_unit: str, *, seed: int = 0) -> Any:
@@ -234,7 +234,7 @@ def bearing(
         "flat_base_fractional_area": pressure / regime.ice_hardness,
         "grains": [
             {
-                "diameter_um": d * 1e6,
+                "diameter_um": round(float(d) * 1e6, 6),
                 "fractional_area": a,
                 "fractional_area_std": s,
                 "mean_penetration_um": pm * 1e6,
