@@ -50,6 +50,12 @@ positions are processed in blocks (default 6 × 6) and everything else is pruned
 The search window around a block is bounded a priori: a pixel at distance r can only compete if
 s(r) ≤ max h − min h + s(ρ*), ρ* the radius holding N*+1 pixels. :func:`bearing_area_reference`
 is the naive search over the whole footprint, kept in the library to check this one.
+
+Cost (measured, ``benchmarks/bench_bearing.py``): about 4–5 candidate pixels per contact pixel
+survive the bounds, i.e. ~45 µs per position and grain size on this 2-core machine; the naive
+search is ~300× slower. The target case (1 mm², 1 µm, 31 sizes, 5.2 million position–size
+pairs) therefore takes minutes, not the 30 s aimed at; ``stride`` trades positions for time
+(stride 3 changed the mean A_fr by < 4·10⁻⁵ relative on preset S3).
 """
 
 from __future__ import annotations
