@@ -23,9 +23,9 @@ from skisnow.cli import main
 from skisnow.sweep import SweepSpec, open_sweep, run_sweep
 from skisnow.sweep._store import done_chunks
 
-# 12 masses × 20 moduli = 20 chunks of 12 solves each
+# 6 masses × 20 moduli = 20 chunks of 6 solves each
 ARGS = [
-    "sweep", "--ski", "skate", "--mass-kg", "5:60:5", "--load-position-mm", "-120",
+    "sweep", "--ski", "skate", "--mass-kg", "5:55:10", "--load-position-mm", "-120",
     "--snow-modulus-mpa", "20:400:20", "--n-points", "1024", "--profile-source", "beam",
     "--workers", "1",
 ]  # fmt: skip
@@ -35,7 +35,7 @@ CMD = [sys.executable, "-c", "from skisnow.cli import main; raise SystemExit(mai
 def _spec() -> SweepSpec:
     return SweepSpec(
         skis=("skate",),
-        masses=np.arange(5.0, 61.0, 5.0),
+        masses=np.arange(5.0, 56.0, 10.0),
         load_positions=(-0.12,),
         snow_moduli=np.arange(20.0, 401.0, 20.0) * 1e6,
         n_points=1024,
