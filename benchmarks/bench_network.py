@@ -90,7 +90,7 @@ def main() -> None:
 
     from skisnow.ski import save_network, shipped_network, train_network
 
-    console = Console()
+    console = Console(width=170)
     console.print(f"load before: {os.getloadavg()}  (2-core machine shared with other engineers)")
     rows = []
     for name in args.skis.split(","):
