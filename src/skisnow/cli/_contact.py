@@ -63,9 +63,10 @@ def contact(
     profile_source: Annotated[
         str,
         typer.Option(
-            "--profile-source", help="With --ski: beam (virtual ski) or network (trained)."
+            "--profile-source",
+            help="With --ski: network (shipped pretrained, default) or beam (virtual ski).",
         ),
-    ] = "beam",
+    ] = "network",
     base_modulus_mpa: Annotated[
         float, typer.Option("--base-modulus-mpa", help="Ski base modulus in MPa (eq. 2).")
     ] = 900.0,
