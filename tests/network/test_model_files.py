@@ -96,3 +96,21 @@ def test_shipped_networks_load(ski):
     h = net.predict(x, 70.0, -0.1)
     assert h.shape == (200,) and np.all(np.isfinite(h)) and np.all(h >= 0)
     assert net.metadata["validation_errors"]["mean_um"] < 50
+
+
+@pytest.mark.parametrize("ski", ["classic", "skate"])
+def test_shipped_networks_match_the_current_beam(ski):
+    """The shipped network must describe the shipped ski as it is now: if someone changes the
+    ski (EI, z0, geometry) without retraining (`benchmarks/bench_network.py --retrain --save`),
+    this fails. Tolerance: mean |error| < 15 µm over three load cases between the bench grid
+    values -- three times the measured ~5 µm, far below the mm-scale change a re-calibrated
+    ski makes."""
+    from skisnow.ski import bench_grid, get_ski, shipped_network, solve_beam
+
+    s = get_ski(ski)
+    x = bench_grid(s, 2e-3)
+    net = shipped_network(ski)
+    for mass, pos in ((22.5, -0.06), (67.5, -0.14), (112.5, -0.22)):
+        truth = solve_beam(s, mass=mass, load_position=pos).sample(x)
+        err = np.abs(net.predict(x, mass, pos) - truth)
+        assert err.mean() < 15e-6, f"{ski} {mass} kg {pos * 1e3:.0f} mm: {err.mean() * 1e6:.1f} µm"
