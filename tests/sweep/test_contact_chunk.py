@@ -87,3 +87,16 @@ def test_breitschaedel_depends_on_the_profile_only(chunks) -> None:
         a, b = chunks[(ski, 50e6)], chunks[(ski, 200e6)]
         np.testing.assert_array_equal(a["breitschaedel_area_cm2"], b["breitschaedel_area_cm2"])
         assert np.all(a["breitschaedel_area_cm2"][:, 3] > 0)
+
+
+def test_profiles_computed_once_give_the_same_chunk(chunks) -> None:
+    # The sweep computes the loaded profiles of a (ski, x_m) once, in the client, and hands
+    # them to every chunk; the chunk must equal the one that computes its own profiles.
+    from skisnow.sweep._point import loaded_profiles
+
+    spec = _spec()
+    profiles = loaded_profiles(spec, "classic", -0.12)
+    assert profiles["height"].shape == (len(spec.masses), spec.n_points)
+    out = contact_chunk(spec, "classic", -0.12, 200e6, profiles)
+    for name, want in chunks[("classic", 200e6)].items():
+        np.testing.assert_array_equal(out[name], want, err_msg=name)

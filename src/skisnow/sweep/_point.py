@@ -17,8 +17,9 @@ contact reaching a ski end) is recorded as NaN with ``converged = False`` rather
 chunk: a map over loads legitimately has such corners. Any other error fails the chunk (and Dask
 retries it).
 
-Loaded profiles do not depend on the snow, so they are cached per worker process: a worker that
-computes several moduli of the same (ski, x_m) computes each profile once.
+Loaded profiles do not depend on the snow: :func:`loaded_profiles` computes those of all masses
+of one (ski, x_m) once, in the sweep's client (the camber network's JAX never runs on the Dask
+workers), and they are cached per process when computed point by point.
 """
 
 from __future__ import annotations
@@ -60,6 +61,26 @@ def _profile(
     return xs, h
 
 
+def loaded_profiles(spec: SweepSpec, ski_name: str, load_position: float) -> dict[str, np.ndarray]:
+    """The loaded profiles of every mass of ``spec`` at one (ski, x_m): ``{"x": (n_points,),
+    "height": (n_mass, n_points)}`` [m]. Shared by all snow moduli of the (ski, x_m); the sweep
+    computes it once in the client and scatters it to the workers."""
+    from skisnow.ski import get_ski
+
+    ski = get_ski(ski_name)  # an unknown ski is an InputError here, in the client
+    heights = []
+    x = np.linspace(ski.x_tail, ski.x_tip, spec.n_points)
+    for mass in spec.masses:
+        try:
+            x, h = _profile(
+                ski_name, spec.profile_source, float(mass), float(load_position), spec.n_points
+            )
+        except UnsupportedLoadError:
+            h = np.full(spec.n_points, np.nan)  # recorded as a non-converged point
+        heights.append(h)
+    return {"x": np.asarray(x), "height": np.vstack(heights)}
+
+
 def solve_point(
     spec: SweepSpec,
     ski_name: str,
@@ -68,16 +89,25 @@ def solve_point(
     snow_modulus: float,
     *,
     initial_pressure: np.ndarray | None = None,
+    profile: tuple[np.ndarray, np.ndarray] | None = None,
 ):
     """One point of a sweep: ``(ContactSolution, ZoneMetrics)`` (SI units).
 
-    Raises :class:`UnsupportedLoadError` where the profile cannot carry the load.
+    ``profile`` (x, h) [m] skips computing the loaded profile. Raises
+    :class:`UnsupportedLoadError` where the profile cannot carry the load.
     """
     from skisnow.contact import contact_zones, effective_modulus, solve_contact
     from skisnow.ski import get_ski
 
     ski = get_ski(ski_name)
-    x, h = _profile(ski_name, spec.profile_source, float(mass), float(load_position), spec.n_points)
+    if profile is None:
+        x, h = _profile(
+            ski_name, spec.profile_source, float(mass), float(load_position), spec.n_points
+        )
+    else:
+        x, h = profile
+        if not np.all(np.isfinite(h)):
+            raise UnsupportedLoadError(f"no loaded profile of {ski_name} at m = {mass} kg")
     modulus = effective_modulus(snow_modulus, spec.base_modulus, poisson=spec.poisson)
     solution = solve_contact(
         x,
@@ -96,11 +126,16 @@ def solve_point(
 
 
 def contact_chunk(
-    spec: SweepSpec, ski_name: str, load_position: float, snow_modulus: float
+    spec: SweepSpec,
+    ski_name: str,
+    load_position: float,
+    snow_modulus: float,
+    profiles: dict[str, np.ndarray] | None = None,
 ) -> dict[str, np.ndarray]:
     """The chunk function of real sweeps: every mass of ``spec`` at one (ski, x_m, E_counter).
 
-    Returns the variables of :data:`skisnow.sweep.VARIABLES` in their stored (field) units.
+    ``profiles`` is :func:`loaded_profiles` of this (ski, x_m), if already computed. Returns the
+    variables of :data:`skisnow.sweep.VARIABLES` in their stored (field) units.
     """
     n_m, n_z = len(spec.masses), len(spec.zones)
     out: dict[str, np.ndarray] = {
@@ -122,8 +157,15 @@ def contact_chunk(
     previous: np.ndarray | None = None
     for a, mass in enumerate(spec.masses):
         try:
+            profile = None if profiles is None else (profiles["x"], profiles["height"][a])
             solution, zones = solve_point(
-                spec, ski_name, mass, load_position, snow_modulus, initial_pressure=previous
+                spec,
+                ski_name,
+                mass,
+                load_position,
+                snow_modulus,
+                initial_pressure=previous,
+                profile=profile,
             )
         except UnsupportedLoadError:
             previous = None

@@ -54,10 +54,11 @@ class SweepRun:
 
 
 def _chunk_task(
-    fn: ChunkFunction, spec: SweepSpec, key: tuple[int, int, int]
+    fn: ChunkFunction, spec: SweepSpec, key: tuple[int, int, int], shared: Any = None
 ) -> tuple[tuple[int, int, int], dict[str, np.ndarray]]:
     i, j, k = key
-    out = fn(spec, spec.skis[i], spec.load_positions[j], spec.snow_moduli[k])
+    args = (spec, spec.skis[i], spec.load_positions[j], spec.snow_moduli[k])
+    out = fn(*args) if shared is None else fn(*args, shared)  # type: ignore[call-arg]
     return key, {name: np.asarray(v) for name, v in out.items()}
 
 
@@ -174,6 +175,7 @@ def run_sweep(
     client: Any = None,
     retries: int = 2,
     on_progress: ProgressCallback | None = None,
+    shared_function: Callable[[SweepSpec, str, float], Any] | None = None,
 ) -> SweepRun:
     """Compute the chunks of ``spec`` that are missing from the Zarr store at ``path``.
 
@@ -193,11 +195,18 @@ def run_sweep(
         client: an existing ``distributed.Client`` to use (overrides ``scheduler``/``workers``).
         retries: Dask retries of a chunk whose worker failed.
         on_progress: called after each chunk is written.
+        shared_function: computes, in this process, data shared by all chunks of one (ski,
+            load position), passed to ``chunk_function`` as a fifth argument (scattered once to
+            the Dask workers). The default physics uses it for the loaded profiles of all
+            masses: the camber network (JAX) then runs once here and never on the workers,
+            which only solve contacts.
     """
     if chunk_function is None:
-        from skisnow.sweep._point import contact_chunk
+        from skisnow.sweep._point import contact_chunk, loaded_profiles
 
         chunk_function = contact_chunk
+        if shared_function is None:
+            shared_function = loaded_profiles
     if workers is not None and workers < 0:
         raise InputError(f"workers: need >= 0, got {workers}")
     if retries < 0:
@@ -224,8 +233,16 @@ def run_sweep(
 
     if client is None and scheduler is None and workers == 0:
         t1 = time.perf_counter()
+        cache: dict[tuple[int, int], Any] = {}
         for key in todo:
-            _record(*_chunk_task(chunk_function, spec, key))
+            shared = None
+            if shared_function is not None:
+                if key[:2] not in cache:
+                    cache.clear()  # chunks come ordered by (ski, position): keep one
+                    i, j = key[:2]
+                    cache[key[:2]] = shared_function(spec, spec.skis[i], spec.load_positions[j])
+                shared = cache[key[:2]]
+            _record(*_chunk_task(chunk_function, spec, key, shared))
         end = time.perf_counter()
         return SweepRun(
             path=path, spec=spec, computed=tuple(computed), skipped=skipped,
@@ -246,18 +263,29 @@ def run_sweep(
             client = own_client
         n_workers = len(client.scheduler_info(n_workers=-1).get("workers", {}))
         t1 = time.perf_counter()
-        futures = [
-            client.submit(
-                _chunk_task,
-                chunk_function,
-                spec,
-                key,
-                key=f"skisnow-chunk-{path.name}-{key[0]}-{key[1]}-{key[2]}-{time.time_ns()}",
-                retries=retries,
-                pure=False,
+        futures = []
+        shared_futures: dict[tuple[int, int], Any] = {}
+        for key in todo:  # ordered by (ski, position): submit as soon as its profiles exist
+            shared = None
+            if shared_function is not None:
+                if key[:2] not in shared_futures:
+                    i, j = key[:2]
+                    data = shared_function(spec, spec.skis[i], spec.load_positions[j])
+                    # a list of one: a dict would be scattered item by item
+                    shared_futures[key[:2]] = client.scatter([data], hash=False)[0]
+                shared = shared_futures[key[:2]]
+            futures.append(
+                client.submit(
+                    _chunk_task,
+                    chunk_function,
+                    spec,
+                    key,
+                    shared,
+                    key=f"skisnow-chunk-{path.name}-{key[0]}-{key[1]}-{key[2]}-{time.time_ns()}",
+                    retries=retries,
+                    pure=False,
+                )
             )
-            for key in todo
-        ]
         from distributed import as_completed
 
         try:
@@ -273,7 +301,7 @@ def run_sweep(
                     ) from exc
                 _record(key, values)
         finally:
-            for future in futures:
+            for future in [*futures, *shared_futures.values()]:
                 future.cancel()
         end = time.perf_counter()
         return SweepRun(
