@@ -38,24 +38,29 @@ Discretisation (what this module computes exactly):
 
 Algorithm (exact; no approximation beyond the discretisation above). Only ⌊N*⌋ + 1 pixels per
 position matter — a few hundred for D = 450–750 µm at 1 µm pixels and 20 kPa — so the
-positions are processed in blocks (default 6 × 6) and everything else is pruned by bounds:
+positions are processed in tiles (default 4 × 4) grouped in super-tiles (default 4 × 4 tiles)
+and everything else is pruned by bounds:
 
 1. Any pixel with F(x) < τ (τ = (⌊N*⌋+1)-th largest F of that position) is irrelevant.
-2. For a block B of positions, F_x0(x) ≤ h(x) − s(d_min(x, B)) and F_x0(x) ≥ h(x) − s(d_max(x, B))
+2. For a set B of positions, F_x0(x) ≤ h(x) − s(d_min(x, B)) and F_x0(x) ≥ h(x) − s(d_max(x, B))
    for every x0 in B (s increases with r). The (⌊N*⌋+1)-th largest of the lower bound is a lower
    bound τ_B of every position's τ; pixels whose upper bound is below τ_B are dropped.
-3. For the survivors the exact F is evaluated for every position of the block and the top
-   ⌊N*⌋+1 are selected with ``argpartition`` (vectorised over the block's positions).
+   A super-tile applies this to its search window once; each tile applies it again, with its
+   own tighter distances, to the super-tile's survivors.
+3. For the tile's survivors the exact F is evaluated for every position of the tile, the
+   (⌊N*⌋+1)-th largest found by an in-place selection, and the contact summed (ties at the
+   boundary taken in raster order, as the reference's stable sort does).
 
-The search window around a block is bounded a priori: a pixel at distance r can only compete if
-s(r) ≤ max h − min h + s(ρ*), ρ* the radius holding N*+1 pixels. :func:`bearing_area_reference`
-is the naive search over the whole footprint, kept in the library to check this one.
+Steps 1–3 run in one compiled kernel (numba, GIL released; see the comment at
+``_bearing_kernel`` for why). F is h − s read from a table of the sag at integer pixel offsets,
+the very values the reference computes, so the selected pixels are the reference's.
+The search window around a super-tile is bounded a priori: a pixel at distance r can only
+compete if s(r) ≤ max h − min h + s(ρ*), ρ* the radius holding N*+1 pixels.
+:func:`bearing_area_reference` is the naive search over the whole footprint, kept in the
+library to check this one.
 
-Cost (measured, ``benchmarks/bench_bearing.py``): about 4–5 candidate pixels per contact pixel
-survive the bounds, i.e. ~45 µs per position and grain size on this 2-core machine; the naive
-search is ~300× slower. The target case (1 mm², 1 µm, 31 sizes, 5.2 million position–size
-pairs) therefore takes minutes, not the 30 s aimed at; ``stride`` trades positions for time
-(stride 3 changed the mean A_fr by < 4·10⁻⁵ relative on preset S3).
+Cost (measured, ``benchmarks/bench_bearing.py``): see the benchmark's table; ``stride`` trades
+positions for time (stride 3 changed the mean A_fr by < 4·10⁻⁵ relative on preset S3).
 """
 
 from __future__ import annotations
@@ -65,6 +70,7 @@ from collections.abc import Callable, Sequence
 from concurrent.futures import ThreadPoolExecutor
 from dataclasses import dataclass
 
+import numba
 import numpy as np
 
 from skisnow._errors import InputError
@@ -183,25 +189,6 @@ def _positions(shape: tuple[int, int], ci: int, cj: int, stride: int) -> np.ndar
     return np.stack(np.meshgrid(ii, jj, indexing="ij"), axis=-1).reshape(-1, 2)
 
 
-def _select(
-    f: np.ndarray, w: np.ndarray, n: int, frac: float
-) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """For rows of F values and per-column weights w: (Σ w over the contact, z0 = max F,
-    F at the fractional step)."""
-    idx = np.argpartition(-f, n, axis=1)
-    top = idx[:, :n]
-    nxt = idx[:, n]
-    rows = np.arange(f.shape[0])
-    ftop = np.take_along_axis(f, top, axis=1)
-    wsum = w[top].sum(axis=1) + frac * w[nxt]
-    fn1 = f[rows, nxt]
-    if n == 0:  # less than one pixel: part of the highest one, at δ = 0
-        return wsum, fn1, fn1
-    fn = ftop.min(axis=1)
-    level = fn - frac * (fn - fn1)  # δ interpolated between the n-th and (n+1)-th step
-    return wsum, ftop.max(axis=1), level
-
-
 def _result(
     topo: Topography,
     diameter: float,
@@ -228,6 +215,196 @@ def _result(
     )
 
 
+# ---------------------------------------------------------------------------------------------
+# Compiled kernel. Why numba: the exact search is a selection (the (N*+1)-th largest F) over a
+# few hundred candidates per position, repeated 5 million times in the target case; in NumPy
+# every step (bounds, F, partition, masked sums) is a separate pass over a temporary, and the
+# best vectorised version measured (tiles of positions against a shared candidate list, value
+# partition, batched masked sums) stayed at ~45 µs per position under load, 4× short of the
+# target. A loop that computes F from a sag table and runs an in-place quickselect touches each
+# candidate twice and releases the GIL, so ``bearing_sweep`` threads use both cores.
+# ---------------------------------------------------------------------------------------------
+
+
+@numba.njit(cache=True, nogil=True)
+def _kth_largest_inplace(a: np.ndarray, m: int, k: int) -> float:  # pragma: no cover - jit
+    """The k-th largest of a[:m] (k = 1: the maximum); reorders a[:m] (Wirth's selection)."""
+    t = m - k  # index of the answer in ascending order
+    lo = 0
+    hi = m - 1
+    while lo < hi:
+        x = a[t]
+        i = lo
+        j = hi
+        while True:
+            while a[i] < x:
+                i += 1
+            while x < a[j]:
+                j -= 1
+            if i <= j:
+                tmp = a[i]
+                a[i] = a[j]
+                a[j] = tmp
+                i += 1
+                j -= 1
+            if i > j:
+                break
+        if j < t:
+            lo = i
+        if t < i:
+            hi = j
+    return a[t]
+
+
+@numba.njit(cache=True, nogil=True)
+def _bearing_kernel(
+    h: np.ndarray,
+    w: np.ndarray,
+    ii: np.ndarray,
+    jj: np.ndarray,
+    ux: int,
+    uy: int,
+    table: np.ndarray,
+    n: int,
+    frac: float,
+    bx: int,
+    by: int,
+    sx: int,
+    sy: int,
+    out_w: np.ndarray,
+    out_z: np.ndarray,
+    out_l: np.ndarray,
+) -> None:  # pragma: no cover - jit
+    """The pruned exact search of the module docstring for every position ii × jj.
+
+    ``table[a, b]`` is the sag at the pixel offset (a, b) (+inf outside the footprint), so F is
+    h − table[|Δi|, |Δj|], the reference's arithmetic. Super-tiles of sx × sy positions scan
+    their window once (step 1); tiles of bx × by positions filter the super-tile's list with
+    their own bounds (step 2); each position selects from its tile's list (step 3)."""
+    n_i = ii.size
+    n_j = jj.size
+    for si in range(0, n_i, sx):
+        se = min(si + sx, n_i)
+        p0i = ii[si]
+        p1i = ii[se - 1]
+        for sj in range(0, n_j, sy):
+            sje = min(sj + sy, n_j)
+            p0j = jj[sj]
+            p1j = jj[sje - 1]
+            # step 1: the super-tile's window, bounds at the extreme distances
+            i0 = p0i - ux
+            i1 = p1i + ux + 1
+            j0 = p0j - uy
+            j1 = p1j + uy + 1
+            size = (i1 - i0) * (j1 - j0)
+            buf = np.empty(size)
+            k = 0
+            for i in range(i0, i1):
+                dmi = max(abs(i - p0i), abs(i - p1i))
+                for j in range(j0, j1):
+                    dmj = max(abs(j - p0j), abs(j - p1j))
+                    buf[k] = h[i, j] - table[dmi, dmj]
+                    k += 1
+            tau = _kth_largest_inplace(buf, size, n + 1)
+            c_i = np.empty(size, np.int64)
+            c_j = np.empty(size, np.int64)
+            c_h = np.empty(size)
+            c_w = np.empty(size)
+            nc = 0
+            for i in range(i0, i1):
+                dni = max(0, p0i - i, i - p1i)
+                for j in range(j0, j1):
+                    dnj = max(0, p0j - j, j - p1j)
+                    hv = h[i, j]
+                    if hv - table[dni, dnj] >= tau:
+                        c_i[nc] = i
+                        c_j[nc] = j
+                        c_h[nc] = hv
+                        c_w[nc] = w[i, j]
+                        nc += 1
+            low = np.empty(nc)
+            t_i = np.empty(nc, np.int64)
+            t_j = np.empty(nc, np.int64)
+            t_h = np.empty(nc)
+            t_w = np.empty(nc)
+            f = np.empty(nc)
+            scratch = np.empty(nc)
+            ties = np.empty(nc, np.int64)
+            for ti in range(si, se, bx):
+                te = min(ti + bx, se)
+                q0i = ii[ti]
+                q1i = ii[te - 1]
+                for tj in range(sj, sje, by):
+                    tje = min(tj + by, sje)
+                    q0j = jj[tj]
+                    q1j = jj[tje - 1]
+                    # step 2: the tile's candidates
+                    for c in range(nc):
+                        gi = c_i[c]
+                        gj = c_j[c]
+                        dmi = max(abs(gi - q0i), abs(gi - q1i))
+                        dmj = max(abs(gj - q0j), abs(gj - q1j))
+                        low[c] = c_h[c] - table[dmi, dmj]
+                    tau_t = _kth_largest_inplace(low, nc, n + 1)
+                    m = 0
+                    for c in range(nc):
+                        gi = c_i[c]
+                        gj = c_j[c]
+                        dni = max(0, q0i - gi, gi - q1i)
+                        dnj = max(0, q0j - gj, gj - q1j)
+                        if c_h[c] - table[dni, dnj] >= tau_t:
+                            t_i[m] = gi
+                            t_j[m] = gj
+                            t_h[m] = c_h[c]
+                            t_w[m] = c_w[c]
+                            m += 1
+                    # step 3: exact selection for every position of the tile
+                    for a in range(ti, te):
+                        pi = ii[a]
+                        for b in range(tj, tje):
+                            pj = jj[b]
+                            for c in range(m):
+                                v = t_h[c] - table[abs(t_i[c] - pi), abs(t_j[c] - pj)]
+                                f[c] = v
+                                scratch[c] = v
+                            fn1 = _kth_largest_inplace(scratch, m, n + 1)
+                            cnt = 0
+                            nt = 0
+                            wsum = 0.0
+                            z0 = -np.inf
+                            fmin = np.inf
+                            for c in range(m):
+                                v = f[c]
+                                if v > fn1:
+                                    cnt += 1
+                                    wsum += t_w[c]
+                                    if v > z0:
+                                        z0 = v
+                                    if v < fmin:
+                                        fmin = v
+                                elif v == fn1:
+                                    ties[nt] = c
+                                    nt += 1
+                            # ties at the boundary: taken in raster order, like the
+                            # reference's stable sort
+                            need = n - cnt
+                            for q in range(need):
+                                wsum += t_w[ties[q]]
+                            wsum += frac * t_w[ties[need]]
+                            if n == 0:
+                                z0 = fn1
+                                fn = fn1
+                            elif cnt == n:
+                                fn = fmin
+                            else:
+                                fn = fn1
+                                if cnt == 0:
+                                    z0 = fn1
+                            out_w[a, b] = wsum
+                            out_z[a, b] = z0
+                            out_l[a, b] = fn - frac * (fn - fn1)
+
+
 def bearing_area(
     topo: Topography,
     *,
@@ -236,7 +413,8 @@ def bearing_area(
     hardness: float,
     shape: str = "sphere",
     stride: int = 1,
-    block: int | tuple[int, int] = (6, 6),
+    block: int | tuple[int, int] = (4, 4),
+    superblock: int | tuple[int, int] = (4, 4),
 ) -> BearingMap:
     """Bearing model of one grain size over the raster (eq. 5–9; see the module docstring).
 
@@ -256,7 +434,10 @@ def bearing_area(
     stride
         Raster step in pixels (1 = every pixel centre).
     block
-        Positions per block side of the pruned search (performance only; results identical).
+        Positions per side of the tile that shares one candidate list (performance only).
+    superblock
+        Tiles per side of the super-tile whose search window is scanned once (performance
+        only; results identical).
     """
     h, radius, ci, cj = _check(topo, diameter, pressure, hardness, shape, stride)
     w = slope_factor(topo.__class__(h, topo.dx, topo.dy, topo.source))
@@ -274,62 +455,39 @@ def bearing_area(
         r_max = min(math.sqrt(2 * radius * reach), radius)
     ux = min(math.ceil(r_max / dx), ci)
     uy = min(math.ceil(r_max / dy), cj)
-    ii = np.unique(pos[:, 0])
-    jj = np.unique(pos[:, 1])
+    ii = np.unique(pos[:, 0]).astype(np.int64)
+    jj = np.unique(pos[:, 1]).astype(np.int64)
     bx, by = (block, block) if np.isscalar(block) else block  # type: ignore[misc]
     bx, by = max(1, int(bx)), max(1, int(by))
-    # sag of every integer pixel offset that a block can reach (lookup instead of sqrt per pair)
-    ex, ey = ux + (bx - 1) * stride, uy + (by - 1) * stride
-    oi = np.arange(-ex, ex + 1) * dx
-    oj = np.arange(-ey, ey + 1) * dy
-    sag_table = _sag(oi[:, None] ** 2 + oj[None, :] ** 2, radius, shape).ravel()
-    width = 2 * ey + 1
-    centre = ex * width + ey
-    hflat = h.ravel()
-    wflat = w.ravel()
-    ny = h.shape[1]
-    bounds: dict[tuple[int, int], tuple[np.ndarray, np.ndarray]] = {}
-
-    def window_bounds(mi: int, mj: int) -> tuple[np.ndarray, np.ndarray]:
-        """Sag at the largest / smallest distance from a block of mi × mj positions."""
-        if (mi, mj) not in bounds:
-            ext_i = np.arange(-ux, (mi - 1) * stride + ux + 1)
-            ext_j = np.arange(-uy, (mj - 1) * stride + uy + 1)
-            last_i, last_j = (mi - 1) * stride, (mj - 1) * stride
-            dmin_i = np.maximum(0, np.maximum(-ext_i, ext_i - last_i)) * dx
-            dmin_j = np.maximum(0, np.maximum(-ext_j, ext_j - last_j)) * dy
-            dmax_i = np.maximum(np.abs(ext_i), np.abs(ext_i - last_i)) * dx
-            dmax_j = np.maximum(np.abs(ext_j), np.abs(ext_j - last_j)) * dy
-            bounds[(mi, mj)] = (
-                _sag(dmax_i[:, None] ** 2 + dmax_j[None, :] ** 2, radius, shape),
-                _sag(dmin_i[:, None] ** 2 + dmin_j[None, :] ** 2, radius, shape),
-            )
-        return bounds[(mi, mj)]
-
+    sx, sy = (superblock, superblock) if np.isscalar(superblock) else superblock  # type: ignore[misc]
+    sx, sy = bx * max(1, int(sx)), by * max(1, int(sy))
+    # sag at every integer pixel offset a window can hold, as the reference computes it
+    ea = ux + (min(sx, ii.size) - 1) * stride
+    eb = uy + (min(sy, jj.size) - 1) * stride
+    oa = np.arange(ea + 1) * dx
+    ob = np.arange(eb + 1) * dy
+    table = np.ascontiguousarray(_sag(oa[:, None] ** 2 + ob[None, :] ** 2, radius, shape))
     grid_w = np.empty((ii.size, jj.size))
     grid_z = np.empty_like(grid_w)
     grid_l = np.empty_like(grid_w)
-    for bi in range(0, ii.size, bx):
-        pi = ii[bi : bi + bx]
-        i0, i1 = pi[0] - ux, pi[-1] + ux + 1
-        for bj in range(0, jj.size, by):
-            pj = jj[bj : bj + by]
-            j0, j1 = pj[0] - uy, pj[-1] + uy + 1
-            sag_far, sag_near = window_bounds(pi.size, pj.size)
-            hw = h[i0:i1, j0:j1]
-            lower = (hw - sag_far).ravel()
-            k = lower.size - (n + 1)
-            tau = np.partition(lower, k)[k]
-            ci_, cj_ = np.nonzero(hw - sag_near >= tau)
-            cand = (ci_ + i0) * ny + (cj_ + j0)  # flat pixel index
-            cand_off = (ci_ + i0) * width + (cj_ + j0)
-            pos_off = (pi[:, None] * width + pj[None, :]).ravel()
-            f = hflat[cand][None, :] - sag_table[cand_off[None, :] - pos_off[:, None] + centre]
-            wsum, z0, level = _select(f, wflat[cand], n, frac)
-            sl = (slice(bi, bi + pi.size), slice(bj, bj + pj.size))
-            grid_w[sl] = wsum.reshape(pi.size, pj.size)
-            grid_z[sl] = z0.reshape(pi.size, pj.size)
-            grid_l[sl] = level.reshape(pi.size, pj.size)
+    _bearing_kernel(
+        np.ascontiguousarray(h, dtype=np.float64),
+        np.ascontiguousarray(w, dtype=np.float64),
+        ii,
+        jj,
+        ux,
+        uy,
+        table,
+        n,
+        frac,
+        bx,
+        by,
+        sx,
+        sy,
+        grid_w,
+        grid_z,
+        grid_l,
+    )
     out_w = grid_w.ravel()
     out_z = grid_z.ravel()
     out_l = grid_l.ravel()
