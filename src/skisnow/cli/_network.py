@@ -42,8 +42,8 @@ def train(
         "--widths",
         help="Six layer widths: load, collapse1-3, camber1-2 (paper 000, Figure 3).",
     ),
-    adam_steps: int = typer.Option(1000, "--adam-steps", help="Adam steps (first phase)."),
-    lm_steps: int = typer.Option(150, "--lm-steps", help="Max Levenberg-Marquardt steps."),
+    adam_steps: int = typer.Option(600, "--adam-steps", help="Adam steps (first phase)."),
+    lm_steps: int = typer.Option(200, "--lm-steps", help="Max Levenberg-Marquardt steps."),
     ensemble: int = typer.Option(1, "--ensemble", help="Number of members (spread = uncertainty)."),
     json_out: bool = _JSON,
 ) -> None:
