@@ -458,9 +458,9 @@ def _make_lm_step(
     Why not :class:`optimistix.LevenbergMarquardt`: we tried it first (the library of the field).
     Its damped step solves the augmented least-squares system through a ``lineax.QR`` of a
     function operator that is re-materialised for every trust-region trial; on this problem
-    (3000 residuals × ~900 parameters) that measured 6–10 s per step on the shared 2-core
-    machine, against well under a second here, where JᵀJ is one BLAS product reused by every
-    trial of μ.
+    (3000 residuals × ~900 parameters) it measured 6–10 s per step on the shared 2-core machine
+    (load average ≈ 6). Here JᵀJ is one BLAS product reused by every trial of μ: 3–4 s per step
+    at load ≈ 7, ~1.1 s per step at load ≈ 4.7 (measured, same problem size).
     """
 
     @jax.jit
