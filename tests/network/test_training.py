@@ -43,8 +43,8 @@ def test_small_network_reaches_stated_error(small_network, small_bench):
     Why these numbers: the load moves the camber by up to ~5 mm over the bench range, so the
     trivial predictor is off by ~1 mm on average; a network that has learnt how the load
     collapses the ski must be far better. The 0.15 mm bound is the accuracy of this deliberately
-    tiny, briefly trained network (measured 0.044 mm with seed 3), not the production target (< 5 µm, checked
-    by benchmarks/bench_network.py on the shipped networks).
+    tiny, briefly trained network (measured 0.044 mm with seed 3), not the production target
+    (< 5 µm, checked by benchmarks/bench_network.py on the shipped networks).
     """
     profiles = _profiles(small_bench)
     val = {
