@@ -1,7 +1,8 @@
-"""No work lost: a REAL sweep process (the CLI on a local Dask cluster) is interrupted with Ctrl-C
-(SIGINT to its process group, as a terminal does), restarted and then killed with SIGKILL, then
-the same command is run again. Each restart must compute only chunks that were not finished
-(0 finished chunks recomputed) and the end result must be the dataset of an uninterrupted run."""
+"""No work lost: a REAL sweep process (the CLI) is interrupted with Ctrl-C (SIGINT to its process
+group, as a terminal does), restarted on a local Dask cluster and killed with SIGKILL (workers
+included), then the same sweep is run again. Each restart must compute only chunks that were not
+finished (0 finished chunks recomputed) and the end result must be the dataset of an
+uninterrupted run."""
 
 from __future__ import annotations
 
@@ -26,8 +27,7 @@ from skisnow.sweep._store import done_chunks
 # 6 masses × 20 moduli = 20 chunks of 6 solves each
 ARGS = [
     "sweep", "--ski", "skate", "--mass-kg", "5:55:10", "--load-position-mm", "-120",
-    "--snow-modulus-mpa", "20:400:20", "--n-points", "1024", "--profile-source", "beam",
-    "--workers", "1",
+    "--snow-modulus-mpa", "20:400:20", "--n-points", "512", "--profile-source", "beam",
 ]  # fmt: skip
 CMD = [sys.executable, "-c", "from skisnow.cli import main; raise SystemExit(main())"]
 
@@ -38,16 +38,18 @@ def _spec() -> SweepSpec:
         masses=np.arange(5.0, 56.0, 10.0),
         load_positions=(-0.12,),
         snow_moduli=np.arange(20.0, 401.0, 20.0) * 1e6,
-        n_points=1024,
+        n_points=512,
         profile_source="beam",
     )
 
 
-def _interrupt(store: Path, spec: SweepSpec, sig: int, at_least: int) -> tuple[int, str]:
+def _interrupt(
+    store: Path, spec: SweepSpec, sig: int, at_least: int, workers: str
+) -> tuple[int, str]:
     """Start the sweep, wait until ``at_least`` chunks are marked done, send ``sig`` to its
     process group; return (exit code, stderr)."""
     proc = subprocess.Popen(
-        [*CMD, *ARGS, "--out", str(store)],
+        [*CMD, *ARGS, "--workers", workers, "--out", str(store)],
         stdout=subprocess.DEVNULL,
         stderr=subprocess.PIPE,
         text=True,
@@ -86,14 +88,14 @@ def test_ctrl_c_then_sigkill_then_resume(
     spec = _spec()
     everything = set(spec.chunks())
 
-    # 1. Ctrl-C: a clean, non-zero exit that says what was kept
-    code, err = _interrupt(store, spec, signal.SIGINT, at_least=1)
+    # 1. Ctrl-C (sweep computing in its own process): a clean, non-zero exit saying what was kept
+    code, err = _interrupt(store, spec, signal.SIGINT, at_least=1, workers="0")
     after_ctrl_c = done_chunks(store, spec)
     assert code != 0 and "interrupted" in err, err[-500:]
     assert 1 <= len(after_ctrl_c) < len(everything)
 
-    # 2. restarted, then SIGKILLed (no chance to clean up, workers included)
-    code, _ = _interrupt(store, spec, signal.SIGKILL, at_least=len(after_ctrl_c) + 2)
+    # 2. restarted on a local Dask cluster, then SIGKILLed (no clean-up, workers included)
+    code, _ = _interrupt(store, spec, signal.SIGKILL, at_least=len(after_ctrl_c) + 2, workers="1")
     after_kill = done_chunks(store, spec)
     assert code == -signal.SIGKILL
     assert after_ctrl_c < after_kill < everything, "killed too late to test resuming"
@@ -103,7 +105,7 @@ def test_ctrl_c_then_sigkill_then_resume(
     # 3. the same command again (in this process, to save an interpreter start-up; it starts
     # its own local cluster): exactly the missing chunks are computed
     capsys.readouterr()
-    assert main([*ARGS, "--out", str(store), "--json"]) == 0
+    assert main([*ARGS, "--workers", "1", "--out", str(store), "--json"]) == 0
     doc = json.loads(capsys.readouterr().out)
     recomputed = {tuple(k) for k in doc["computed"]}
     assert recomputed.isdisjoint(after_kill), "a finished chunk was recomputed"
