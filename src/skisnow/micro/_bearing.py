@@ -264,6 +264,8 @@ def _bearing_kernel(
     jj: np.ndarray,
     ux: int,
     uy: int,
+    uci: int,
+    ucj: int,
     table: np.ndarray,
     n: int,
     frac: float,
@@ -298,14 +300,26 @@ def _bearing_kernel(
             j1 = p1j + uy + 1
             size = (i1 - i0) * (j1 - j0)
             buf = np.empty(size)
+            # a first lower bound L0 of τ from the core (the super-tile grown by uci, ucj,
+            # which holds more than N*+1 pixels); the window's (N*+1)-th largest lower bound
+            # is ≥ L0, so only the window pixels with a lower bound ≥ L0 enter the selection
+            k = 0
+            for i in range(max(i0, p0i - uci), min(i1, p1i + uci + 1)):
+                dmi = max(abs(i - p0i), abs(i - p1i))
+                for j in range(max(j0, p0j - ucj), min(j1, p1j + ucj + 1)):
+                    dmj = max(abs(j - p0j), abs(j - p1j))
+                    buf[k] = h[i, j] - table[dmi, dmj]
+                    k += 1
+            low0 = _kth_largest_inplace(buf, k, n + 1)
             k = 0
             for i in range(i0, i1):
                 dmi = max(abs(i - p0i), abs(i - p1i))
                 for j in range(j0, j1):
                     dmj = max(abs(j - p0j), abs(j - p1j))
-                    buf[k] = h[i, j] - table[dmi, dmj]
-                    k += 1
-            tau = _kth_largest_inplace(buf, size, n + 1)
+                    v = h[i, j] - table[dmi, dmj]
+                    buf[k] = v
+                    k += v >= low0
+            tau = _kth_largest_inplace(buf, k, n + 1)
             c_i = np.empty(size, np.int64)
             c_j = np.empty(size, np.int64)
             c_h = np.empty(size)
@@ -327,9 +341,12 @@ def _bearing_kernel(
             t_j = np.empty(nc, np.int64)
             t_h = np.empty(nc)
             t_w = np.empty(nc)
-            f = np.empty(nc)
-            scratch = np.empty(nc)
-            ties = np.empty(nc, np.int64)
+            band = np.empty(2 * nc)
+            band_w = np.empty(nc)
+            res = np.empty(6)
+            have_guess = False
+            guess = 0.0
+            delta = 0.0
             for ti in range(si, se, bx):
                 te = min(ti + bx, se)
                 q0i = ii[ti]
@@ -363,46 +380,103 @@ def _bearing_kernel(
                         pi = ii[a]
                         for b in range(tj, tje):
                             pj = jj[b]
-                            for c in range(m):
-                                v = t_h[c] - table[abs(t_i[c] - pi), abs(t_j[c] - pj)]
-                                f[c] = v
-                                scratch[c] = v
-                            fn1 = _kth_largest_inplace(scratch, m, n + 1)
-                            cnt = 0
-                            nt = 0
-                            wsum = 0.0
-                            z0 = -np.inf
-                            fmin = np.inf
-                            for c in range(m):
-                                v = f[c]
-                                if v > fn1:
-                                    cnt += 1
-                                    wsum += t_w[c]
-                                    if v > z0:
-                                        z0 = v
-                                    if v < fmin:
-                                        fmin = v
-                                elif v == fn1:
-                                    ties[nt] = c
-                                    nt += 1
-                            # ties at the boundary: taken in raster order, like the
-                            # reference's stable sort
-                            need = n - cnt
-                            for q in range(need):
-                                wsum += t_w[ties[q]]
-                            wsum += frac * t_w[ties[need]]
-                            if n == 0:
-                                z0 = fn1
-                                fn = fn1
-                            elif cnt == n:
-                                fn = fmin
-                            else:
-                                fn = fn1
-                                if cnt == 0:
-                                    z0 = fn1
-                            out_w[a, b] = wsum
+                            # bracket the threshold near the previous position's; if it
+                            # falls outside, the pass tells on which side (res[5])
+                            lo, hi = tau_t, np.inf
+                            if have_guess:
+                                lo, hi = max(guess - delta, tau_t), guess + delta
+                            while not _band_select(
+                                t_h, t_w, t_i, t_j, m, pi, pj, table, n, lo, hi, band, band_w,
+                                res,
+                            ):  # fmt: skip
+                                lo, hi = (hi, np.inf) if res[5] > 0 else (tau_t, lo)
+                            wsum, z0, fn, fn1 = res[0], res[1], res[2], res[3]
+                            out_w[a, b] = wsum + frac * res[4]
                             out_z[a, b] = z0
                             out_l[a, b] = fn - frac * (fn - fn1)
+                            if have_guess:
+                                delta = max(3.0 * abs(fn1 - guess), 1e-3 * (z0 - fn1), 1e-300)
+                            else:
+                                delta = max(1e-2 * (z0 - fn1), 1e-300)
+                            guess = fn1
+                            have_guess = True
+
+
+@numba.njit(cache=True, nogil=True)
+def _band_select(
+    t_h: np.ndarray,
+    t_w: np.ndarray,
+    t_i: np.ndarray,
+    t_j: np.ndarray,
+    m: int,
+    pi: int,
+    pj: int,
+    table: np.ndarray,
+    n: int,
+    g_lo: float,
+    g_hi: float,
+    band: np.ndarray,
+    band_w: np.ndarray,
+    res: np.ndarray,
+) -> bool:  # pragma: no cover - jit
+    """Exact contact of the position (pi, pj) from the tile's candidates, if its threshold
+    fn1 (the (n+1)-th largest F) lies in [g_lo, g_hi]; returns False otherwise.
+
+    One branch-free pass sums the pixels above g_hi (all in the contact) and gathers the band
+    [g_lo, g_hi] in raster order; the selection runs on the band only. ``res`` receives
+    (Σw over the n largest, z0 = max F, n-th largest F, fn1, w of the (n+1)-th pixel)."""
+    khi = 0
+    kb = 0
+    w_hi = 0.0
+    z_hi = -np.inf
+    fmin_hi = np.inf
+    for c in range(m):
+        v = t_h[c] - table[abs(t_i[c] - pi), abs(t_j[c] - pj)]
+        hi = v > g_hi
+        khi += hi
+        w_hi += t_w[c] if hi else 0.0
+        z_hi = max(z_hi, v)
+        fmin_hi = min(fmin_hi, v if hi else np.inf)
+        band[kb] = v
+        band_w[kb] = t_w[c]
+        kb += (not hi) and v >= g_lo
+    if khi > n or khi + kb < n + 1:
+        res[5] = 1.0 if khi > n else -1.0
+        return False
+    scratch = band[kb : 2 * kb]
+    scratch[:] = band[:kb]
+    fn1 = _kth_largest_inplace(scratch, kb, n + 1 - khi)
+    cnt = khi
+    wsum = w_hi
+    fmin = fmin_hi
+    w_next = 0.0
+    need = -1
+    for c in range(kb):
+        v = band[c]
+        if v > fn1:
+            cnt += 1
+            wsum += band_w[c]
+            fmin = min(fmin, v)
+    # ties at the boundary: taken in raster order, like the reference's stable sort
+    need = n - cnt
+    for c in range(kb):
+        if band[c] == fn1:
+            if need > 0:
+                wsum += band_w[c]
+                need -= 1
+            else:
+                w_next = band_w[c]
+                break
+    z0 = z_hi
+    if n == 0 or cnt == 0:
+        z0 = fn1
+    fn = fn1 if (n == 0 or cnt < n) else fmin
+    res[0] = wsum
+    res[1] = z0
+    res[2] = fn
+    res[3] = fn1
+    res[4] = w_next
+    return True
 
 
 def bearing_area(
@@ -477,6 +551,8 @@ def bearing_area(
         jj,
         ux,
         uy,
+        min(ux, math.ceil(rho / dx)),
+        min(uy, math.ceil(rho / dy)),
         table,
         n,
         frac,
