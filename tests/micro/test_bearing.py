@@ -114,3 +114,35 @@ def test_sweep_and_positions_inside_the_map() -> None:
         bearing_area(t, diameter=200e-6, pressure=P, hardness=H)
     with pytest.raises(InputError, match="hardness"):
         bearing_area(t, diameter=50e-6, pressure=P, hardness=P / 2)
+
+
+@pytest.mark.parametrize("shape", ["sphere", "paraboloid"])
+def test_exact_ties_are_broken_like_the_reference(shape: str) -> None:
+    """A terraced base (heights on 4 levels) makes F = h − s(r) tie exactly between pixels at
+    the same distance on the same terrace, while their slope factors differ near the steps:
+    the contact sum then depends on which tied pixels are taken. The fast search must take
+    them in raster order, as the reference's stable sort does."""
+    rng = np.random.default_rng(7)
+    levels = rng.integers(0, 4, size=(12, 12)).astype(float) * 0.5e-6
+    h = np.kron(levels, np.ones((7, 7)))  # 84 × 84 px terraces of 7 × 7 px
+    t = make_topography(h, dx=2e-6)
+    kw = {"diameter": 100e-6, "pressure": P, "hardness": H, "shape": shape}
+    fast = bearing_area(t, **kw)
+    ref = bearing_area_reference(t, **kw)
+    np.testing.assert_array_equal(fast.positions, ref.positions)
+    # same pixels, summed in another order: 1e-12
+    np.testing.assert_allclose(fast.fractional_area, ref.fractional_area, rtol=1e-12)
+    np.testing.assert_allclose(fast.penetration, ref.penetration, rtol=1e-9, atol=1e-15)
+    np.testing.assert_array_equal(fast.first_contact, ref.first_contact)
+
+
+def test_tiling_does_not_change_the_answer() -> None:
+    """Tile and super-tile sizes are performance knobs only: every choice selects the same
+    pixels (bit-identical first contact, sums equal to rounding)."""
+    t = lowpass(grind_preset("S2", size=200e-6, dx=2e-6, seed=3), cutoff=33e-6)
+    kw = {"diameter": 110e-6, "pressure": P, "hardness": H}
+    base = bearing_area(t, **kw, block=1, superblock=1)
+    for block, superblock in [((4, 4), (4, 4)), ((3, 5), (2, 3)), (7, 1)]:
+        m = bearing_area(t, **kw, block=block, superblock=superblock)
+        np.testing.assert_array_equal(m.first_contact, base.first_contact)
+        np.testing.assert_allclose(m.fractional_area, base.fractional_area, rtol=1e-12)
