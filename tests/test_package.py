@@ -50,3 +50,20 @@ def test_table_numbers_are_plain(value: float, text: str) -> None:
     from skisnow.cli._render import format_number
 
     assert format_number(value) == text
+
+
+def test_cli_passes_on_the_exit_code_of_a_command() -> None:
+    import typer
+
+    from skisnow.cli._app import app
+
+    @app.command("_exit-with-3", hidden=True)
+    def _exit_with_3() -> None:
+        raise typer.Exit(3)
+
+    try:
+        assert main(["_exit-with-3"]) == 3
+    finally:
+        app.registered_commands[:] = [
+            c for c in app.registered_commands if c.name != "_exit-with-3"
+        ]

@@ -47,7 +47,9 @@ def main(argv: list[str] | None = None) -> int:
     args = sys.argv[1:] if argv is None else argv
     _state["debug"] = "--debug" in args
     try:
-        app(args=args, prog_name="skisnow", standalone_mode=False)
+        # In non-standalone mode Click returns the code of a `typer.Exit(code)` / Ctrl-C (130)
+        # instead of raising it: pass it on, or an interrupted command would report success.
+        code = app(args=args, prog_name="skisnow", standalone_mode=False)
     except typer.Exit as exc:
         return exc.exit_code
     except typer.Abort:
@@ -67,4 +69,4 @@ def main(argv: list[str] | None = None) -> int:
         name = type(exc).__name__
         typer.echo(f"skisnow: error: {exc} [{name}]", err=True)
         return 1
-    return 0
+    return code if isinstance(code, int) else 0
