@@ -285,6 +285,11 @@ def _bearing_kernel(
     their own bounds (step 2); each position selects from its tile's list (step 3)."""
     n_i = ii.size
     n_j = jj.size
+    # thresholds fn1 found so far: the guess for a position is the plane through its left,
+    # upper and upper-left neighbours (all done before it in this loop order); the bracket
+    # half-width follows the recent guess errors
+    thr = np.empty((n_i, n_j))
+    err = -1.0
     for si in range(0, n_i, sx):
         se = min(si + sx, n_i)
         p0i = ii[si]
@@ -344,9 +349,6 @@ def _bearing_kernel(
             band = np.empty(2 * nc)
             band_w = np.empty(nc)
             res = np.empty(6)
-            have_guess = False
-            guess = 0.0
-            delta = 0.0
             for ti in range(si, se, bx):
                 te = min(ti + bx, se)
                 q0i = ii[ti]
@@ -380,10 +382,19 @@ def _bearing_kernel(
                         pi = ii[a]
                         for b in range(tj, tje):
                             pj = jj[b]
-                            # bracket the threshold near the previous position's; if it
-                            # falls outside, the pass tells on which side (res[5])
+                            # bracket the threshold near its neighbours'; if it falls
+                            # outside, the pass tells on which side (res[5])
+                            if a > 0 and b > 0:
+                                guess = thr[a, b - 1] + thr[a - 1, b] - thr[a - 1, b - 1]
+                            elif b > 0:
+                                guess = thr[a, b - 1]
+                            elif a > 0:
+                                guess = thr[a - 1, b]
+                            else:
+                                guess = np.nan
                             lo, hi = tau_t, np.inf
-                            if have_guess:
+                            if err >= 0.0 and guess == guess:
+                                delta = 3.0 * err + 1e-300
                                 lo, hi = max(guess - delta, tau_t), guess + delta
                             while not _band_select(
                                 t_h, t_w, t_i, t_j, m, pi, pj, table, n, lo, hi, band, band_w,
@@ -394,12 +405,10 @@ def _bearing_kernel(
                             out_w[a, b] = wsum + frac * res[4]
                             out_z[a, b] = z0
                             out_l[a, b] = fn - frac * (fn - fn1)
-                            if have_guess:
-                                delta = max(3.0 * abs(fn1 - guess), 1e-3 * (z0 - fn1), 1e-300)
-                            else:
-                                delta = max(1e-2 * (z0 - fn1), 1e-300)
-                            guess = fn1
-                            have_guess = True
+                            thr[a, b] = fn1
+                            if guess == guess:
+                                e = abs(fn1 - guess)
+                                err = e if err < 0.0 else 0.7 * err + 0.3 * e
 
 
 @numba.njit(cache=True, nogil=True)
