@@ -1,7 +1,7 @@
 """The HTML report: self-contained (no scripts, no external resources), its numbers are the
 solver's, and it renders in headless Chromium (Debian's ``chromium``) with no console message.
 
-The maps come from a small sweep with the analytic chunk function (``_hertz_chunk.py``) so the
+The maps come from a small sweep with the analytic chunk function (``tests/_hertz_chunk.py``) so the
 test stays fast; the metrics and the standard-load zones are the real ones.
 """
 
