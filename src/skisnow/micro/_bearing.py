@@ -266,6 +266,7 @@ def _bearing_kernel(
     uy: int,
     uci: int,
     ucj: int,
+    h_max: float,
     table: np.ndarray,
     n: int,
     frac: float,
@@ -316,6 +317,19 @@ def _bearing_kernel(
                     buf[k] = h[i, j] - table[dmi, dmj]
                     k += 1
             low0 = _kth_largest_inplace(buf, k, n + 1)
+            # a pixel a rows beyond the super-tile has F ≤ max h − s(a·dx) for all its
+            # positions: the window shrinks to the rows and columns where that reaches L0
+            ra = 0
+            while ra < ux and h_max - table[ra + 1, 0] >= low0:
+                ra += 1
+            rb = 0
+            while rb < uy and h_max - table[0, rb + 1] >= low0:
+                rb += 1
+            i0 = p0i - ra
+            i1 = p1i + ra + 1
+            j0 = p0j - rb
+            j1 = p1j + rb + 1
+            size = (i1 - i0) * (j1 - j0)
             k = 0
             for i in range(i0, i1):
                 dmi = max(abs(i - p0i), abs(i - p1i))
@@ -562,6 +576,7 @@ def bearing_area(
         uy,
         min(ux, math.ceil(rho / dx)),
         min(uy, math.ceil(rho / dy)),
+        float(np.max(h)),
         table,
         n,
         frac,
