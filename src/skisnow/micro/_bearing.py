@@ -381,14 +381,18 @@ def _bearing_kernel(
                     tje = min(tj + by, sje)
                     q0j = jj[tj]
                     q1j = jj[tje - 1]
-                    # step 2: the tile's candidates
+                    # step 2: the tile's candidates. The tile's lower bounds are ≥ the
+                    # super-tile's, whose (N*+1)-th largest is τ: only those ≥ τ compete
+                    kl = 0
                     for c in range(nc):
                         gi = c_i[c]
                         gj = c_j[c]
                         dmi = max(abs(gi - q0i), abs(gi - q1i))
                         dmj = max(abs(gj - q0j), abs(gj - q1j))
-                        low[c] = c_h[c] - table[dmi, dmj]
-                    tau_t = _kth_largest_inplace(low, nc, n + 1)
+                        v = c_h[c] - table[dmi, dmj]
+                        low[kl] = v
+                        kl += v >= tau
+                    tau_t = _kth_largest_inplace(low, kl, n + 1)
                     m = 0
                     for c in range(nc):
                         gi = c_i[c]
