@@ -1,11 +1,12 @@
 """The S1–S5 table of seed paper 001 on skisnow's synthetic grinding presets.
 
-For each preset: roughness (plane removed, 33 µm low-pass), the bearing model's mean fractional
-real contact area A_fr(D) over grain diameters 450–750 µm (eq. 5–9), the grain average ⟨A_fr⟩
-(eq. 12–13, the seed's fitted f(D)), and the elastic–perfectly-plastic contact with a flat ice
-counter surface (the seed's Fig. 3 check) — with the ranks under both models and the Pearson r
-of ⟨A_fr⟩ against the seed's Table 3 glide times (eq. 10). Ice at the given temperature
-(Poirier, eq. 2), nominal pressure 20 kPa.
+For each preset: roughness (plane removed, 33 µm low-pass); the bearing model's mean fractional
+real contact area A_fr(D) over grain diameters 450–750 µm (eq. 5–9) and its grain average
+⟨A_fr⟩ (eq. 12–13, the seed's fitted f(D)); the elastic–perfectly-plastic contact with a flat
+ice counter surface (the seed's Fig. 3 check). Both contact models see the plane-removed,
+33 µm low-passed map, as ``skisnow bearing`` prepares a file. Then the ranks under both models
+and the Pearson r of ⟨A_fr⟩ against the seed's Table 3 glide times (eq. 10). Ice at the given
+temperature (Poirier, eq. 2), nominal pressure 20 kPa.
 
     uv run python examples/micro_s1_s5.py                 # 1 mm², 1 µm; EP at 2 µm (~4 min)
     uv run python examples/micro_s1_s5.py --small         # a quick look (0.3 mm², coarse)
@@ -39,10 +40,18 @@ def main() -> None:
         grain_average,
         grind_preset,
         ice_hardness,
+        lowpass,
         pearson,
+        remove_form,
         roughness,
         scherge2021,
     )
+
+    def prepared(name: str, dx: float) -> object:
+        """The preset as both contact models see it (and as the CLI prepares a file): plane
+        removed, then the seed's 33 µm Fourier low-pass."""
+        raw = grind_preset(name, size=size, dx=dx, seed=0)
+        return lowpass(remove_form(raw, method="plane"), cutoff=33e-6)
 
     size = 0.3e-3 if args.small else 1e-3
     ep_dx = 3e-6 if args.small else 2e-6
@@ -56,8 +65,8 @@ def main() -> None:
     names = ["S1", "S2", "S3", "S4", "S5"]
     rows, mean_afr, ep_afr = [], [], []
     for name in names:
-        topo = grind_preset(name, size=size, dx=1e-6, seed=0)
-        r = roughness(topo)
+        r = roughness(grind_preset(name, size=size, dx=1e-6, seed=0))
+        topo = prepared(name, 1e-6)
         sweep = bearing_sweep(
             topo,
             diameters=diameters,
@@ -68,9 +77,7 @@ def main() -> None:
         )
         afr = sweep.fractional_area
         avg = grain_average(diameters, afr) if not args.small else float(np.mean(afr))
-        ep = elastoplastic_contact(
-            grind_preset(name, size=size, dx=ep_dx, seed=0), pressure=pressure, hardness=hardness
-        )
+        ep = elastoplastic_contact(prepared(name, ep_dx), pressure=pressure, hardness=hardness)
         at = {d: float(np.interp(d, diameters, afr)) for d in (500e-6, 600e-6, 700e-6)}
         mean_afr.append(avg)
         ep_afr.append(ep.real_fractional_area)
