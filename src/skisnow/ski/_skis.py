@@ -188,6 +188,44 @@ def _rest_on_plane(x: NDArray[np.float64], z: NDArray[np.float64]) -> NDArray[np
     return z - (z[i] + (z[j] - z[i]) * (x - x[i]) / (x[j] - x[i]))
 
 
+def _stiffness_stations(x_tail: float, x_tip: float) -> NDArray[np.float64]:
+    """Stations [m] of the tabulated EI(x): every 20 mm from tail to tip."""
+    return np.round(np.linspace(x_tail, x_tip, round((x_tip - x_tail) / 0.02) + 1), 6)
+
+
+def _assemble(
+    *,
+    name: str,
+    kind: Literal["classic", "skate"],
+    x_tail: float,
+    x_tip: float,
+    x: NDArray[np.float64],
+    z: NDArray[np.float64],
+    ex: NDArray[np.float64],
+    ei: NDArray[np.float64],
+    kick_zone: tuple[float, float] | None,
+    description: str,
+) -> Ski:
+    """Add the shovel (200 mm, 30 mm high) and tail (50 mm, 4 mm) rises to the running-surface
+    shape z(x), rest it on the plane and build the :class:`Ski` (44 mm wide)."""
+    shovel, tail = 0.20, 0.05  # lengths [m] of the tip (shovel) and tail rises
+    z = z + 30e-3 * np.clip((x - (x_tip - shovel)) / shovel, 0.0, 1.0) ** 2.5
+    z = z + 4e-3 * np.clip(((x_tail + tail) - x) / tail, 0.0, 1.0) ** 2
+    return Ski(
+        name=name,
+        kind=kind,
+        x_tail=x_tail,
+        x_tip=x_tip,
+        width=0.044,
+        stiffness_x=ex,
+        stiffness_values=ei,
+        camber_x=x,
+        camber_values=_rest_on_plane(x, z),
+        kick_zone=kick_zone,
+        description=description,
+    )
+
+
 def _build(
     *,
     name: str,
@@ -210,24 +248,12 @@ def _build(
         z = z + pocket * _bump(x, *pocket_span, 2)
     if hump is not None:
         z = z + hump[0] * _bump(x, hump[1], hump[2], 2)
-    shovel, tail = 0.20, 0.05  # lengths [m] of the tip (shovel) and tail rises
-    z = z + 30e-3 * np.clip((x - (x_tip - shovel)) / shovel, 0.0, 1.0) ** 2.5
-    z = z + 4e-3 * np.clip(((x_tail + tail) - x) / tail, 0.0, 1.0) ** 2
-    ex = np.round(np.linspace(x_tail, x_tip, round((x_tip - x_tail) / 0.02) + 1), 6)
+    ex = _stiffness_stations(x_tail, x_tip)
     ei = ei_end + (ei_mid - ei_end) * _bump(ex, -1.0, 1.0, 2) ** 0.5
-    return Ski(
-        name=name,
-        kind=kind,
-        x_tail=x_tail,
-        x_tip=x_tip,
-        width=0.044,
-        stiffness_x=ex,
-        stiffness_values=ei,
-        camber_x=x,
-        camber_values=_rest_on_plane(x, z),
-        kick_zone=kick_zone,
-        description=description,
-    )
+    return _assemble(
+        name=name, kind=kind, x_tail=x_tail, x_tip=x_tip, x=x, z=z, ex=ex, ei=ei,
+        kick_zone=kick_zone, description=description,
+    )  # fmt: skip
 
 
 def _build_glide(
@@ -274,24 +300,12 @@ def _build_glide(
         (np.clip(x - f, 0.0, None), glide_radii[1]),
     ):
         z = z + d_ref**2 / (2.0 * radius) * (d / d_ref) ** glide_power
-    shovel, tail = 0.20, 0.05  # lengths [m] of the tip (shovel) and tail rises
-    z = z + 30e-3 * np.clip((x - (x_tip - shovel)) / shovel, 0.0, 1.0) ** 2.5
-    z = z + 4e-3 * np.clip(((x_tail + tail) - x) / tail, 0.0, 1.0) ** 2
-    ex = np.round(np.linspace(x_tail, x_tip, round((x_tip - x_tail) / 0.02) + 1), 6)
+    ex = _stiffness_stations(x_tail, x_tip)
     ei = ei_end + (ei_mid - ei_end) * _bump(ex, -1.0, 1.0, ei_power)
-    return Ski(
-        name=name,
-        kind=kind,
-        x_tail=x_tail,
-        x_tip=x_tip,
-        width=0.044,
-        stiffness_x=ex,
-        stiffness_values=ei,
-        camber_x=x,
-        camber_values=_rest_on_plane(x, z),
-        kick_zone=kick_zone,
-        description=description,
-    )
+    return _assemble(
+        name=name, kind=kind, x_tail=x_tail, x_tip=x_tip, x=x, z=z, ex=ex, ei=ei,
+        kick_zone=kick_zone, description=description,
+    )  # fmt: skip
 
 
 _SOURCES = """\
