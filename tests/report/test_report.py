@@ -15,8 +15,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from _hertz_chunk import hertz_chunk
 
+from _hertz_chunk import hertz_chunk
 from skisnow.sweep import SweepSpec, open_sweep, run_sweep
 
 CHROMIUM = shutil.which("chromium") or shutil.which("chromium-browser")

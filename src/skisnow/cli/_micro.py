@@ -10,6 +10,7 @@ import numpy as np
 import typer
 
 from skisnow._errors import InputError
+from skisnow._values import parse_values
 from skisnow.cli._app import app
 from skisnow.cli._render import console, emit_json, err_console, print_table
 
@@ -19,23 +20,9 @@ _JSON = typer.Option("--json", help="Print one JSON document to stdout, nothing 
 
 
 def parse_grain_range(text: str) -> np.ndarray:
-    """``START:STOP:STEP`` (inclusive, µm), a comma list or one value → diameters [m]."""
-    try:
-        if ":" in text:
-            parts = [float(v) for v in text.split(":")]
-            if len(parts) != 3 or parts[2] <= 0 or parts[1] < parts[0]:
-                raise ValueError
-            start, stop, step = parts
-            n = int(np.floor((stop - start) / step + 1e-9)) + 1
-            values = start + step * np.arange(n)
-        else:
-            values = np.array([float(v) for v in text.split(",") if v.strip()])
-    except ValueError:
-        raise InputError(
-            f"--grain-um {text!r}: expected START:STOP:STEP (e.g. 450:750:10), a comma list "
-            "or one value, in µm, STOP >= START, STEP > 0"
-        ) from None
-    if values.size == 0 or np.any(values <= 0):
+    """``START:STOP:STEP`` (inclusive, µm), a list or one value → sorted unique diameters [m]."""
+    values = parse_values(text, name="--grain-um")
+    if np.any(values <= 0):
         raise InputError(f"--grain-um {text!r}: diameters must be positive µm")
     return np.unique(np.round(values, 6)) * 1e-6
 

@@ -5,35 +5,14 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Annotated, Any
 
-import numpy as np
 import typer
 
 from skisnow._errors import InputError
+from skisnow._values import parse_values
 from skisnow.cli._app import app
 from skisnow.cli._render import emit_json, err_console, print_table
 
-__all__ = ["parse_values"]
-
 _JSON = typer.Option(False, "--json", help="Print one JSON document to stdout, nothing else.")
-
-
-def parse_values(text: str, *, name: str) -> list[float]:
-    """Parse ``start:stop:step`` (inclusive), ``a,b,c`` or ``a`` into a list of floats."""
-    try:
-        if ":" in text:
-            parts = [float(p) for p in text.split(":")]
-            if len(parts) != 3 or parts[2] == 0:
-                raise ValueError
-            start, stop, step = parts
-            n = int(np.floor((stop - start) / step + 1e-9)) + 1
-            if n < 1:
-                raise ValueError
-            return [start + i * step for i in range(n)]
-        return [float(p) for p in text.split(",") if p.strip()]
-    except ValueError:
-        raise InputError(
-            f"{name}: cannot read {text!r}; use start:stop:step (e.g. 5:130:5) or a,b,c"
-        ) from None
 
 
 def _progress_bar(total_label: str) -> Any:
@@ -114,8 +93,8 @@ def bench(
     sk = get_ski(ski)
     if out.suffix.lower() not in (".csv", ".parquet"):
         raise InputError(f"--out {out}: use a .csv or .parquet file name")
-    masses = parse_values(mass_kg, name="--mass-kg")
-    positions = [p * 1e-3 for p in parse_values(load_position_mm, name="--load-position-mm")]
+    masses = parse_values(mass_kg, name="--mass-kg").tolist()
+    positions = (parse_values(load_position_mm, name="--load-position-mm") * 1e-3).tolist()
     with _progress_bar(f"bench {ski}") as bar:
         task = bar.add_task("bench", total=len(set(masses)) * len(set(positions)))
         data = run_bench(
