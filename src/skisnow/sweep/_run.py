@@ -138,6 +138,10 @@ PRELOAD = (
 )
 
 
+#: glibc's trim threshold for the workers of local clusters [bytes] (see :func:`local_cluster`).
+MALLOC_TRIM_THRESHOLD = 1 << 20
+
+
 def local_cluster(n_workers: int) -> Any:
     """A :class:`dask.distributed.LocalCluster` of ``n_workers`` processes, one thread each.
 
@@ -151,7 +155,14 @@ def local_cluster(n_workers: int) -> Any:
     from distributed import LocalCluster
 
     method = "forkserver" if "forkserver" in multiprocessing.get_all_start_methods() else "spawn"
-    with dask.config.set({"distributed.worker.multiprocessing-method": method}):
+    settings = {
+        "distributed.worker.multiprocessing-method": method,
+        # Dask's default 64 KiB makes glibc give back (and fault in again) the solver's 64 KiB
+        # FFT buffers on every call: measured 1.83 s against 1.39 s for one 126-mass chunk. At
+        # 1 MiB the solver runs as fast as in a plain process, and memory is still returned.
+        "distributed.nanny.pre-spawn-environ.MALLOC_TRIM_THRESHOLD_": MALLOC_TRIM_THRESHOLD,
+    }
+    with dask.config.set(settings):
         if method == "forkserver":
             from distributed.utils import get_mp_context
 
