@@ -34,9 +34,8 @@ On 1D grids the iteration runs on the *candidate* cells only (the start's suppor
 whose estimated gap is small): a ski touches the snow over a few hundred of its 4096 stations, so
 the operator restricted to them (a dense Toeplitz block up to 800 cells) and the vectors are
 several times smaller. Since p = 0 off the candidates, the iterates are those of the whole-grid
-iteration; the gap is checked on the whole grid afterwards and any missed cell added (an active-set
-restriction in the spirit of the "contact candidates" of Bemporad & Paggi 2015, Int. J. Solids
-Struct. 69–70, and of boundary-element codes that solve on a bounding box of the contact).
+iteration; the gap is checked on the whole grid afterwards (one FFT) and any missed cell added,
+so the restriction changes the cost, not the answer.
 """
 
 from __future__ import annotations
