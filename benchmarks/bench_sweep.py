@@ -56,13 +56,24 @@ def main() -> None:
     from dataclasses import replace
 
     from skisnow.sweep import contact_chunk
+    from skisnow.sweep._point import loaded_profiles
 
     warm_rows = []
+    # imports and the network's compilation for this many masses, paid once by every process
+    # (and so by neither the 1- nor the 2-worker run below)
+    t0 = time.perf_counter()
+    profiles = loaded_profiles(spec, "skate", -0.12)
+    first_profiles = time.perf_counter() - t0
+    t0 = time.perf_counter()
+    loaded_profiles(spec, "skate", -0.12)
+    warm_profiles = time.perf_counter() - t0
+    print(f"loaded profiles of {len(masses)} masses: {first_profiles:.2f} s first call "
+          f"(JAX compilation), {warm_profiles:.2f} s after")  # fmt: skip
     contact_chunk(replace(spec, masses=masses[:2]), "skate", -0.12, 100e6)  # imports, caches
     for warm in (True, False):
         s = replace(spec, warm_start=warm)
         t0 = time.perf_counter()
-        out = contact_chunk(s, "skate", -0.12, 100e6)
+        out = contact_chunk(s, "skate", -0.12, 100e6, profiles)
         dt = time.perf_counter() - t0
         warm_rows.append((f"one chunk ({len(masses)} masses, 100 MPa), "
                           f"{'warm' if warm else 'cold'} starts", dt,
