@@ -9,12 +9,15 @@
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
-import pandas as pd
 
 from skisnow._errors import FileFormatError
 from skisnow.contact._solver import ContactSolution
+
+if TYPE_CHECKING:  # pandas is imported on use: the solver's users (sweep workers) never need it
+    import pandas as pd
 
 __all__ = ["fields_table", "read_profile", "write_fields"]
 
@@ -35,6 +38,8 @@ def read_profile(path: str | Path, *, resample: bool = True) -> tuple[np.ndarray
         Missing file or columns, non-numeric or non-finite cells (with row and column),
         non-increasing x.
     """
+    import pandas as pd
+
     path = Path(path)
     if not path.is_file():
         raise FileFormatError(f"{path}: no such profile file")
@@ -82,6 +87,8 @@ def fields_table(solution: ContactSolution) -> pd.DataFrame:
     pressure q(x)/w(x) (so that Σ pressure·w·dx = W still holds), ``gap_um`` the smallest gap
     across the width and ``snow_displacement_um`` the width-averaged displacement.
     """
+    import pandas as pd
+
     s = solution
     if s.pressure.ndim == 2:
         fp = s.footprint
