@@ -577,9 +577,10 @@ def _pk_candidates(
     the iteration runs with ``K_SS`` (dense for small S) and the preconditioner restricted the
     same way: as p = 0 off S, its iterates are those of the whole-grid iteration as long as no
     cell off S would enter the contact. After convergence the gap is checked on the whole grid
-    (one FFT); cells off S with g < 0 are added (with every cell whose gap is below the margin)
-    and the iteration resumes from the current pressure. Returns the same tuple as :func:`_pk`
-    (u on the whole grid), or None when the candidates are most of the grid.
+    (one FFT); cells without pressure that penetrate (g < −tol·max u) are added, with every
+    cell whose gap is below the margin, they are given the pressure that closes their own gap,
+    and the iteration resumes. Returns the same tuple as :func:`_pk` (u on the whole grid), or
+    None when the candidates are most of the grid from the start.
     """
     n = h.size
     if margin is None:
@@ -609,11 +610,9 @@ def _pk_candidates(
         _close_gaps(candidates, _CANDIDATE_GAP)
         cells = np.flatnonzero(candidates)
         if cells.size > _CANDIDATE_FRACTION * n or cells.size == 0:
-            return None if iterations == 0 else _finish_whole(
-                conv, h, xi, total=total, control=control, target=target, p=p, tol=tol,
-                max_iter=max_iter - iterations, precondition=precondition,
-                done=(iterations, history, n_conv),
-            )  # fmt: skip
+            if iterations == 0:
+                return None
+            break
         op = RestrictedOperator.build(conv, cells)
         inv = op.preconditioner(inverse) if inverse is not None else None
         ps, _, a, b, it, hist, converged, message, nc = _pk(
@@ -659,11 +658,12 @@ def _pk_candidates(
                 return p, conv(p), a, b, iterations, history, False, (
                     "the contact set cannot carry the load and the moment"
                 ), n_conv + 1  # fmt: skip
-    return _finish_whole(
-        conv, h, xi, total=total, control=control, target=target, p=p, tol=tol,
-        max_iter=max_iter - iterations, precondition=precondition,
-        done=(iterations, history, n_conv),
+    # the candidates grew to most of the grid (or kept missing cells): finish on the whole grid
+    p, u, a, b, it, hist, converged, message, nc = _pk(
+        conv, h, xi, None, total=total, control=control, target=target, p0=p, tol=tol,
+        max_iter=max(max_iter - iterations, 1), precondition=precondition,
     )  # fmt: skip
+    return p, u, a, b, iterations + it, history + hist, converged, message, n_conv + nc
 
 
 def _close_gaps(mask: np.ndarray, width: int) -> None:
@@ -675,30 +675,6 @@ def _close_gaps(mask: np.ndarray, width: int) -> None:
     jumps = np.flatnonzero((np.diff(idx) > 1) & (np.diff(idx) <= width + 1))
     for k in jumps.tolist():
         mask[idx[k] + 1 : idx[k + 1]] = True
-
-
-def _finish_whole(
-    conv: Convolution,
-    h: np.ndarray,
-    xi: np.ndarray,
-    *,
-    total: float | None,
-    control: str,
-    target: np.ndarray | None,
-    p: np.ndarray,
-    tol: float,
-    max_iter: int,
-    precondition: bool,
-    done: tuple[int, list[float], int],
-) -> tuple[np.ndarray, np.ndarray, float, float, int, list[float], bool, str, int]:
-    """Continue on the whole grid from ``p`` (the candidate set grew too large)."""
-    iterations, history, n_conv = done
-    out = _pk(
-        conv, h, xi, None, total=total, control=control, target=target, p0=p, tol=tol,
-        max_iter=max(max_iter, 1), precondition=precondition,
-    )  # fmt: skip
-    p, u, a, b, it, hist, converged, message, nc = out
-    return p, u, a, b, iterations + it, history + hist, converged, message, n_conv + nc
 
 
 # --------------------------------------------------------------------------------------------
