@@ -171,3 +171,25 @@ def test_line_operator_restriction() -> None:
     grid = np.zeros(200)
     grid[idx] = v
     np.testing.assert_allclose(op(v), conv(grid)[idx], rtol=1e-10)
+
+
+def test_candidates_growing_to_most_of_the_grid_finish_on_the_whole_grid(monkeypatch) -> None:
+    # The previous contact as the only candidates, and room for no more: the first resume has
+    # too many candidates, so the iteration must finish on the whole grid from where it stands.
+    whole = _load_path(False, masses=(40.0, 60.0))
+    monkeypatch.setattr(solver_mod, "_CANDIDATE_MARGIN", -1.0)
+    first = whole[0].contact.sum()
+    monkeypatch.setattr(solver_mod, "_CANDIDATE_FRACTION", (first + 40) / 4096)
+    whole_calls = []
+    pk = solver_mod._pk
+
+    def counting_pk(conv, h, *args, **kwargs):
+        whole_calls.append(h.size)
+        return pk(conv, h, *args, **kwargs)
+
+    monkeypatch.setattr(solver_mod, "_pk", counting_pk)
+    cand = _load_path(True, masses=(40.0, 60.0))
+    assert 4096 in whole_calls[1:]  # the second solve ended on the whole grid ...
+    assert any(n < 4096 for n in whole_calls[1:])  # ... after starting on the candidates
+    for a, b in zip(whole, cand, strict=True):
+        _same_solution(a, b)
