@@ -935,34 +935,13 @@ def solve_contact(
 
     if candidates is None:
         candidates = model != "surface" and hf.size >= _CANDIDATE_MIN_CELLS
-    result = None
-    if candidates:
-        result = _pk_candidates(
-            conv,
-            hf,
-            xif,
-            total=total,
-            control=control,
-            target=target,
-            p0=p0,
-            tol=float(tol),
-            max_iter=int(max_iter),
-            precondition=precondition,
-        )
-    if result is None:
-        result = _pk(
-            conv,
-            hf,
-            xif,
-            idx,
-            total=total,
-            control=control,
-            target=target,
-            p0=p0,
-            tol=float(tol),
-            max_iter=int(max_iter),
-            precondition=precondition,
-        )
+    problem: dict = dict(
+        total=total, control=control, target=target, p0=p0, tol=float(tol),
+        max_iter=int(max_iter), precondition=precondition,
+    )  # fmt: skip
+    result = _pk_candidates(conv, hf, xif, **problem) if candidates else None
+    if result is None:  # the whole grid (also when the candidates are most of it)
+        result = _pk(conv, hf, xif, idx, **problem)
     p, u, a, b, iters, hist, converged, message, n_conv = result
     if control == "displacement":
         a, b = float(translation), float(rotation)  # type: ignore[arg-type]
