@@ -15,9 +15,7 @@
 
 from __future__ import annotations
 
-import importlib
-from typing import Any
-
+from skisnow._lazy import lazy_getattr
 from skisnow.ski._beam import (
     BeamSolution,
     beam_stiffness_matrix,
@@ -63,10 +61,7 @@ _LAZY = {
 }
 
 
-def __getattr__(name: str) -> Any:
-    if name in _LAZY:
-        return getattr(importlib.import_module(_LAZY[name]), name)
-    raise AttributeError(f"module 'skisnow.ski' has no attribute {name!r}")
+__getattr__ = lazy_getattr(__name__, _LAZY)
 
 
 __all__ = [
