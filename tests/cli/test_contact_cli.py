@@ -42,7 +42,7 @@ def test_json_document_and_fields_balance(capsys, tmp_path: Path) -> None:
     assert doc["converged"] is True and doc["iterations"] > 0
     assert {"translation_um", "rotation_rad"} <= set(doc)
     # a classic ski loaded 70 mm behind the balance point collapses into its kick zone
-    assert doc["middle"]["patches"] >= 1 and doc["rear"]["patches"] >= 1
+    assert doc["kick"]["load_share"] > 0.05 and doc["rear"]["patches"] >= 1
     shares = sum(doc[z]["load_share"] for z in ("rear", "middle", "front"))
     assert shares == pytest.approx(1.0, rel=1e-12)
     # anyone can check the balance laws from the fields file (written with 10 digits)

@@ -6,7 +6,14 @@ import numpy as np
 import pytest
 
 from skisnow import InputError
-from skisnow.contact import contact_zones, effective_modulus, patches, snow, solve_contact
+from skisnow.contact import (
+    ContactSolution,
+    contact_zones,
+    effective_modulus,
+    patches,
+    snow,
+    solve_contact,
+)
 from skisnow.ski import camber_profile, get_ski
 
 G = 9.80665
@@ -79,12 +86,88 @@ def test_grouping_without_kick_zone_and_breitschaedel(bumps) -> None:
     assert np.isnan(b["total"].mean_pressure)
 
 
-def test_kick_zone_cuts_a_patch_at_its_boundary(bumps) -> None:
+def constructed(x: np.ndarray, pressure: np.ndarray, *, width: float = 0.044) -> ContactSolution:
+    """A strip contact solution with a given pressure field (gap 0 where p > 0, else 1 mm)."""
+    dx = float(x[1] - x[0])
+    force = float(pressure.sum() * dx * width)
+    return ContactSolution(
+        x=x, y=None, height=np.where(pressure > 0, 0.0, 1e-3), pressure=pressure,
+        gap=np.where(pressure > 0, 0.0, 1e-3), displacement=np.where(pressure > 0, 1e-5, 0.0),
+        footprint=np.ones(x.size, bool), translation=0.0, rotation=0.0, load=force,
+        load_position=0.0, modulus=1e8, width=width, model="strip", control="moment",
+        cell_area=dx * width, iterations=0, convolutions=0, residual=0.0,
+        residual_history=np.zeros(0), converged=True, message="constructed",
+        force_residual=0.0, moment_residual=0.0,
+    )  # fmt: skip
+
+
+def field(x: np.ndarray, *patches_kpa: tuple[float, float, float]) -> np.ndarray:
+    """Uniform-pressure patches ``(start, end, kPa)`` [m] on the stations x."""
+    p = np.zeros_like(x)
+    for a, b, kpa in patches_kpa:
+        p[(x > a) & (x < b)] = kpa * 1e3
+    return p
+
+
+X = cells(2000, -1.0, 1.0)  # 1 mm stations
+KICK = (-0.25, 0.25)
+
+
+def test_glide_patch_reaching_into_the_kick_zone_stays_whole() -> None:
+    # rear glide patch -0.60..-0.10 runs 150 mm past the rear mark; front patch 0.40..0.60
+    z = contact_zones(
+        constructed(X, field(X, (-0.60, -0.10, 40.0), (0.40, 0.60, 20.0))), kick_zone=KICK
+    )
+    assert (z.rear.patches, z.middle.patches, z.front.patches) == (1, 0, 1)
+    assert z.rear.length == pytest.approx(0.50, abs=2e-3)
+    assert z.rear.start == pytest.approx(-0.60, abs=1e-3) and z.rear.end == pytest.approx(
+        -0.10, abs=1e-3
+    )
+    assert z.middle.length == 0.0 and z.middle.force == 0.0
+    # the grip-wax metric: the 150 mm of the rear patch between the marks and the load it carries
+    f_total = 0.044 * (0.50 * 40e3 + 0.20 * 20e3)
+    assert z.kick.length == pytest.approx(0.15, abs=2e-3)
+    assert z.kick.force == pytest.approx(0.044 * 0.15 * 40e3, rel=0.02)
+    assert z.kick.load_share == pytest.approx(0.044 * 0.15 * 40e3 / f_total, rel=0.02)
+    assert z.kick.mean_pressure == pytest.approx(40e3, rel=1e-9)
+    assert z.rear.load_share + z.front.load_share == pytest.approx(1.0, rel=1e-12)
+
+
+def test_separate_patch_under_the_foot_is_the_middle_zone() -> None:
+    # the paper's Figure 6 (right): rear, a separate patch in the kick zone, front
+    p = field(X, (-0.60, -0.45, 41.0), (-0.10, -0.02, 47.0), (0.40, 0.50, 34.0))
+    z = contact_zones(constructed(X, p), kick_zone=KICK)
+    assert (z.rear.patches, z.middle.patches, z.front.patches) == (1, 1, 1)
+    assert z.middle.length == pytest.approx(0.08, abs=2e-3)
+    assert z.middle.mean_pressure == pytest.approx(47e3, rel=1e-9)
+    assert z.kick.force == pytest.approx(z.middle.force, rel=1e-12)  # all of it between the marks
+    shares = [z[n].load_share for n in ("rear", "middle", "front")]
+    assert sum(shares) == pytest.approx(1.0, rel=1e-12)
+    # two separate patches in the kick zone are both middle
+    p2 = p + field(X, (0.05, 0.10, 30.0))
+    z2 = contact_zones(constructed(X, p2), kick_zone=KICK)
+    assert (z2.rear.patches, z2.middle.patches, z2.front.patches) == (1, 2, 1)
+
+
+def test_front_glide_patch_reaching_back_and_a_flat_ski() -> None:
+    z = contact_zones(
+        constructed(X, field(X, (-0.6, -0.4, 30.0), (0.10, 0.6, 30.0))), kick_zone=KICK
+    )
+    assert (z.rear.patches, z.middle.patches, z.front.patches) == (1, 0, 1)
+    assert z.front.start == pytest.approx(0.10, abs=1e-3)
+    assert z.kick.length == pytest.approx(0.15, abs=2e-3)
+    # one patch across both marks (a ski pressed flat) goes whole to one side, by its centre
+    for a, b, side in ((-0.7, 0.4, "rear"), (-0.4, 0.7, "front")):
+        z = contact_zones(constructed(X, field(X, (a, b, 30.0))), kick_zone=KICK)
+        assert z[side].patches == 1 and z[side].length == pytest.approx(b - a, abs=2e-3)
+        assert z.middle.patches == 0 and z.kick.length == pytest.approx(0.5, abs=2e-3)
+    # without a kick zone the kick metric is empty
+    z = contact_zones(constructed(X, field(X, (-0.6, -0.4, 30.0), (0.4, 0.6, 30.0))))
+    assert z.kick.patches == 0 and z.kick.force == 0.0
+
+
+def test_kick_zone_validation(bumps) -> None:
     _, sol = bumps
-    # a kick zone boundary through the middle of the front patch splits it in two zones
-    z = contact_zones(sol, kick_zone=(-0.2, 0.5))
-    assert z.front.patches == 1 and z.middle.patches == 2
-    assert z.front.start == pytest.approx(0.5, abs=sol.dx)
     with pytest.raises(InputError, match="kick_zone"):
         contact_zones(sol, kick_zone=(0.3, -0.3))
 
@@ -150,7 +233,8 @@ def test_the_papers_findings_on_the_virtual_skis() -> None:
     # the kick zone is free; shifted forward (−70 mm) the ski collapses onto three zones.
     heel, fore = _zones("classic", 60, -0.21, 100e6), _zones("classic", 60, -0.07, 100e6)
     assert heel.middle.patches == 0 and heel.rear.load_share > 0.65
-    assert min(fore.rear.patches, fore.middle.patches, fore.front.patches) >= 1
+    assert min(fore.rear.patches, fore.front.patches) >= 1
+    assert fore.kick.load_share > 0.05  # the grip wax touches and carries load
     # Fig. 7: classic, 30 kg at −120 mm: softer snow (50 vs 200 MPa) gives longer contacts and
     # lower mean pressures in both zones (rear 227 vs 186 mm, 18.9 vs 23.3 kPa).
     soft, hard = _zones("classic", 30, -0.12, 50e6), _zones("classic", 30, -0.12, 200e6)

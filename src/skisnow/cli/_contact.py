@@ -173,6 +173,8 @@ def contact(
     }
     for name in _ZONES:
         doc[name] = zone_record(zones[name])
+    # the grip-wax metric: contact between the kick-zone marks, whatever patch it belongs to
+    doc["kick"] = zone_record(zones.kick)
     doc["breitschaedel"] = {
         name: zone_record(zones.breitschaedel[name], pressures=False) for name in _ZONES
     }

@@ -3,20 +3,26 @@
 A *patch* is a connected run of stations along the ski where the ski touches the snow (for the
 surface model: where any cell across the width is in contact). Patches are grouped into zones:
 
-* with a kick (grip-wax) zone ``(start, end)`` (classic skis): contact stations inside it are
-  ``middle``, those behind it ``rear`` and those in front ``front`` (a patch that runs from the
-  rear glide zone into the kick zone, as when the ski collapses, counts in both zones, cut at
-  the kick-zone boundary — the paper's Figure 6 right);
+* with a kick (grip-wax) zone ``(start, end)`` (classic skis): patches are kept whole. A patch
+  that lies entirely between the kick-zone marks is ``middle`` — a separate contact under the
+  foot, the third zone of the paper's Figure 6 (right); every other patch belongs to the glide
+  zone it comes from: ``rear`` if it starts behind the rear mark and ends before the front
+  mark, ``front`` if it starts after the rear mark and ends beyond the front mark. A glide patch
+  that reaches into the kick zone therefore stays whole in its glide zone. A patch spanning both
+  marks (a ski pressed flat) goes whole to the side of the kick-zone centre on which its own
+  centre lies. Separately, the ``kick`` metric is the contact between the marks whatever patch
+  it belongs to: where the grip wax touches the snow and the load it carries;
 * without one (skate skis, or ``kick_zone=None``): ``rear``/``front`` are split at the top of the
   camber pocket, the station of greatest height h between the centres of the rearmost and the
   frontmost patch (the arch that separates the two glide zones); a single patch goes whole to
   ``rear`` if its centre lies behind the load point, else to ``front``.
 
-Per zone and in total: start, end [m] (outer cell edges), length [m] (sum of patch lengths — the
-paper's "two patches that amount to 132 mm"), area [m²], force [N], load share, mean pressure
-(force/area) and max pressure [Pa], number of patches and penetration depth (largest snow
-displacement in the zone) [m]. Beside them, the Breitschädel criterion (contact wherever the
-loaded camber height, measured from its lowest point, is below 50 µm) with the same grouping.
+Per zone, in total and between the kick-zone marks (``kick``): start, end [m] (outer cell
+edges), length [m] (sum of patch lengths — the paper's "two patches that amount to 132 mm"),
+area [m²], force [N], load share, mean pressure (force/area) and max pressure [Pa], number of
+patches and penetration depth (largest snow displacement in the zone) [m]. Beside them, the
+Breitschädel criterion (contact wherever the loaded camber height, measured from its lowest
+point, is below 50 µm) with the same grouping.
 """
 
 from __future__ import annotations
@@ -63,25 +69,30 @@ class Zone:
 
 @dataclass(frozen=True, kw_only=True)
 class ZoneMetrics:
-    """Zones of a contact solution: ``rear``, ``middle``, ``front``, ``total``, Breitschädel."""
+    """Zones of a contact solution: ``rear``, ``middle``, ``front``, ``total``, Breitschädel.
+
+    ``kick`` is the contact between the kick-zone marks whatever patch it belongs to (where the
+    grip wax touches the snow; empty without a kick zone).
+    """
 
     rear: Zone
     middle: Zone
     front: Zone
     total: Zone
+    kick: Zone
     breitschaedel: dict[str, Zone]
     split: float
     kick_zone: tuple[float, float] | None
     threshold: float
 
     def __getitem__(self, name: str) -> Zone:
-        if name not in ("rear", "middle", "front", "total"):
+        if name not in ("rear", "middle", "front", "total", "kick"):
             raise KeyError(name)
         return getattr(self, name)
 
     def as_dict(self) -> dict:
         """Nested plain dict in SI units."""
-        out = {n: self[n].as_dict() for n in ("rear", "middle", "front", "total")}
+        out = {n: self[n].as_dict() for n in ("rear", "middle", "front", "total", "kick")}
         out["breitschaedel"] = {k: v.as_dict() for k, v in self.breitschaedel.items()}
         out["split"] = self.split
         out["kick_zone"] = list(self.kick_zone) if self.kick_zone else None
@@ -108,26 +119,39 @@ def _group(
     kick_zone: tuple[float, float] | None,
     split: float | None,
 ) -> tuple[dict[str, list[tuple[int, int]]], float]:
-    """Assign the stations of the runs to zones; a run crossing a zone boundary is cut there."""
+    """Assign the runs (patches) to zones.
+
+    With a kick zone, patches stay whole (see the module docstring); without one, a run crossing
+    the rear/front split (the top of the camber pocket, or ``split``) is cut there.
+    """
+    groups: dict[str, list[tuple[int, int]]] = {n: [] for n in ZONE_NAMES}
     if kick_zone is not None:
         k0, k1 = kick_zone
-        zone_of = np.where(x < k0, 0, np.where(x <= k1, 1, 2))
-        split_used = float("nan") if split is None else float(split)
+        for i, j in runs:
+            first, last = x[i], x[j]
+            if first >= k0 and last <= k1:
+                name = "middle"
+            elif first < k0 and last <= k1:
+                name = "rear"
+            elif first >= k0 and last > k1:
+                name = "front"
+            else:  # spans both marks: the side of the kick-zone centre its centre lies on
+                name = "rear" if 0.5 * (first + last) < 0.5 * (k0 + k1) else "front"
+            groups[name].append((i, j))
+        return groups, float("nan") if split is None else float(split)
+    centres = [0.5 * (x[i] + x[j]) for i, j in runs]
+    if split is None and len(runs) >= 2:
+        lo, hi = min(centres), max(centres)
+        inside = (x >= lo) & (x <= hi)
+        split = float(x[inside][np.argmax(height[inside])])
+    if split is None:
+        # a single patch (or none) goes whole to the side of the load point it lies on
+        split_used = float(load_position)
+        side = 0 if (runs and centres[0] < split_used) else 2
+        zone_of = np.full(x.size, side)
     else:
-        centres = [0.5 * (x[i] + x[j]) for i, j in runs]
-        if split is None and len(runs) >= 2:
-            lo, hi = min(centres), max(centres)
-            inside = (x >= lo) & (x <= hi)
-            split = float(x[inside][np.argmax(height[inside])])
-        if split is None:
-            # a single patch (or none) goes whole to the side of the load point it lies on
-            split_used = float(load_position)
-            side = 0 if (runs and centres[0] < split_used) else 2
-            zone_of = np.full(x.size, side)
-        else:
-            split_used = float(split)
-            zone_of = np.where(x < split_used, 0, 2)
-    groups: dict[str, list[tuple[int, int]]] = {n: [] for n in ZONE_NAMES}
+        split_used = float(split)
+        zone_of = np.where(x < split_used, 0, 2)
     for i, j in runs:
         seg = zone_of[i : j + 1]
         cuts = np.flatnonzero(np.diff(seg)) + 1
@@ -135,6 +159,19 @@ def _group(
         for a, b in itertools.pairwise(bounds):
             groups[ZONE_NAMES[int(seg[a])]].append((i + a, i + b - 1))
     return groups, split_used
+
+
+def _between(
+    runs: list[tuple[int, int]], x: np.ndarray, kick_zone: tuple[float, float] | None
+) -> list[tuple[int, int]]:
+    """The parts of the runs whose stations lie between the kick-zone marks (none without)."""
+    if kick_zone is None:
+        return []
+    inside = (x >= kick_zone[0]) & (x <= kick_zone[1])
+    mask = np.zeros(x.size, dtype=bool)
+    for i, j in runs:
+        mask[i : j + 1] = True
+    return patches(mask & inside)
 
 
 def _zone(
@@ -206,8 +243,10 @@ def contact_zones(
     solution
         A :class:`~skisnow.contact.ContactSolution`.
     kick_zone
-        ``(start, end)`` [m] of the kick-wax zone (classic skis, e.g. ``Ski.kick_zone``); patches
-        centred inside it form the ``middle`` zone. ``None``: rear/front only.
+        ``(start, end)`` [m] of the kick-wax zone (classic skis, e.g. ``Ski.kick_zone``): a
+        patch lying entirely inside it forms the ``middle`` zone, glide patches reaching into it
+        stay whole in their glide zone, and ``kick`` measures the contact between its marks.
+        ``None``: rear/front only.
     split
         Override the rear/front split station [m] (default: the top of the camber pocket).
     threshold
@@ -216,7 +255,7 @@ def contact_zones(
     Returns
     -------
     ZoneMetrics
-        ``rear``, ``middle``, ``front``, ``total`` (:class:`Zone`, SI units) and
+        ``rear``, ``middle``, ``front``, ``total``, ``kick`` (:class:`Zone`, SI units) and
         ``breitschaedel`` (dict of the same four names; lengths and areas only).
     """
     if kick_zone is not None:
@@ -257,6 +296,9 @@ def contact_zones(
         for n in ZONE_NAMES
     }
     total = _zone("total", runs, x, dx, line_force, line_area, pmax, pen, total_force)
+    kick = _zone(
+        "kick", _between(runs, x, kick_zone), x, dx, line_force, line_area, pmax, pen, total_force
+    )
 
     # Breitschädel: contact wherever the loaded camber height is below the threshold
     hb = h_along - np.min(h_along)
@@ -274,6 +316,7 @@ def contact_zones(
         middle=zones["middle"],
         front=zones["front"],
         total=total,
+        kick=kick,
         breitschaedel=breit,
         split=split_used,
         kick_zone=kick_zone,
