@@ -14,8 +14,8 @@ import numpy as np
 import pytest
 import xarray as xr
 import zarr
-from _hertz_chunk import G, W, effective, hertz, hertz_chunk
 
+from _hertz_chunk import G, W, effective, hertz, hertz_chunk
 from skisnow import InputError
 from skisnow.sweep import SweepSpec, open_sweep, parse_values, run_sweep, save_netcdf
 

@@ -8,8 +8,8 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from _hertz_chunk import hertz_chunk
 
+from _hertz_chunk import hertz_chunk
 from skisnow import InputError
 from skisnow.sweep import SweepSpec, open_sweep, run_sweep
 
