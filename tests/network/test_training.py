@@ -73,8 +73,8 @@ def test_seed_reproducibility(small_bench):
     A deliberately tiny run (widths 2,3,3,3,2,2; 20 Adam + 3 LM steps): reproducibility does not
     need accuracy, and the test stays cheap.
     """
+    from skisnow.io import network_arrays
     from skisnow.ski import train_network
-    from skisnow.ski._network import network_arrays
 
     kw = {
         "architecture": "2,3,3,3,2,2",

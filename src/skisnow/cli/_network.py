@@ -17,8 +17,8 @@ _JSON = typer.Option(False, "--json", help="Print one JSON document to stdout, n
 
 def _resolve_model(model: str) -> Any:
     """A shipped ski name or the path of a model (``PATH``, ``PATH.npz`` or ``PATH.json``)."""
+    from skisnow.io import load_network, shipped_network
     from skisnow.ski import SHIPPED_SKIS
-    from skisnow.ski._network import load_network, shipped_network
 
     if model in SHIPPED_SKIS:
         return shipped_network(model)

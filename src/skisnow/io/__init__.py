@@ -2,7 +2,9 @@
 
 * :class:`BenchData`, :func:`read_bench`, :func:`write_bench` — camber-bench tables (CSV with a
   commented JSON metadata line, or Parquet with schema metadata), validated on read.
-* The network's model files (issue 4, ``skisnow.io._model``) are re-exported lazily.
+* :func:`save_network`, :func:`load_network`, :func:`shipped_network` — the camber network's
+  model files (``PATH.npz`` weights + ``PATH.json`` metadata), re-exported lazily (they need
+  JAX); :func:`read_model_files` and friends move the arrays and the document safely.
 """
 
 from __future__ import annotations
@@ -17,12 +19,22 @@ from skisnow.io._bench import (
     write_bench,
 )
 
-_LAZY = {
-    "model_paths": "skisnow.io._model",
-    "parse_model_bytes": "skisnow.io._model",
-    "read_model_files": "skisnow.io._model",
-    "write_model_files": "skisnow.io._model",
-}
+_LAZY = dict.fromkeys(
+    (
+        "MODEL_FORMAT",
+        "MODEL_FORMAT_VERSION",
+        "load_network",
+        "model_paths",
+        "network_arrays",
+        "network_from_files",
+        "parse_model_bytes",
+        "read_model_files",
+        "save_network",
+        "shipped_network",
+        "write_model_files",
+    ),
+    "skisnow.io._model",
+)
 
 
 __getattr__ = lazy_getattr(__name__, _LAZY)
@@ -31,11 +43,19 @@ __getattr__ = lazy_getattr(__name__, _LAZY)
 __all__ = [
     "BENCH_COLUMNS",
     "MIN_PROFILE_POINTS",
+    "MODEL_FORMAT",
+    "MODEL_FORMAT_VERSION",
     "BenchData",
+    "load_network",
     "model_paths",
+    "network_arrays",
+    "network_from_files",
     "parse_model_bytes",
     "read_bench",
     "read_model_files",
+    "save_network",
+    "shipped_network",
     "validate_bench_table",
     "write_bench",
+    "write_model_files",
 ]

@@ -1,26 +1,58 @@
-"""Model files: weights as ``.npz`` (float arrays only, never pickle) plus ``.json`` metadata.
+"""The camber network's file format: weights as ``.npz`` (float arrays only, never pickle) plus
+``.json`` metadata.
 
 A model ``PATH`` is the pair ``PATH.npz`` + ``PATH.json``. The JSON document records the sha256
 of the ``.npz`` bytes, so a truncated or corrupted weights file is detected before it is parsed;
-``np.load(..., allow_pickle=False)`` refuses object arrays. This module knows nothing about what
-the arrays mean (see :mod:`skisnow.ski._network`); it only reads and writes them safely.
+``np.load(..., allow_pickle=False)`` refuses object arrays.
+
+Two layers: :func:`write_model_files` / :func:`read_model_files` / :func:`parse_model_bytes`
+move arrays and a JSON document safely and know nothing of their meaning; :func:`save_network`,
+:func:`load_network` and :func:`shipped_network` map a :class:`skisnow.ski.CamberNetwork` (the
+model, which knows nothing of files) to and from that layout. Array names:
+``member{k}/{layer}/weight|bias`` (layers as :meth:`skisnow.ski.BlockNetwork.layers` names them)
+and ``reference/height``.
 """
 
 from __future__ import annotations
 
+import functools
 import hashlib
 import io
 import json
 import zipfile
 from collections.abc import Mapping
+from dataclasses import asdict
+from importlib import resources
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from skisnow._errors import FileFormatError
+from skisnow._errors import FileFormatError, InputError
 
-__all__ = ["model_paths", "parse_model_bytes", "read_model_files", "write_model_files"]
+if TYPE_CHECKING:
+    from skisnow.ski import BlockNetwork, CamberNetwork
+
+__all__ = [
+    "MODEL_FORMAT",
+    "MODEL_FORMAT_VERSION",
+    "load_network",
+    "model_paths",
+    "network_arrays",
+    "network_from_files",
+    "parse_model_bytes",
+    "read_model_files",
+    "save_network",
+    "shipped_network",
+    "write_model_files",
+]
+
+#: Name of the model file layout written by :func:`save_network`.
+MODEL_FORMAT = "skisnow-camber-network"
+#: Version of that layout (bump on incompatible change).
+MODEL_FORMAT_VERSION = 1
+#: Package whose ``models/`` directory holds the pretrained networks of the shipped skis.
+MODELS_PACKAGE = "skisnow.ski"
 
 
 def model_paths(path: str | Path) -> tuple[Path, Path]:
@@ -88,3 +120,209 @@ def read_model_files(path: str | Path) -> tuple[dict[str, np.ndarray], dict[str,
         raise FileFormatError(f"{json_path}: not UTF-8 text ({exc})") from None
     arrays, doc = parse_model_bytes(npz_path.read_bytes(), text, where)
     return arrays, doc, where
+
+
+# --------------------------------------------------------------------------------------------
+# The camber network <-> arrays + JSON document
+
+
+def network_arrays(net: CamberNetwork) -> dict[str, np.ndarray]:
+    """The weights as a flat ``{name: float64 array}`` dict (the .npz content)."""
+    arrays = {}
+    for k, member in enumerate(net.members):
+        for name, layer in member.layers():
+            arrays[f"member{k}/{name}/weight"] = np.asarray(layer.weight, dtype=np.float64)
+            arrays[f"member{k}/{name}/bias"] = np.asarray(layer.bias, dtype=np.float64)
+    if net.reference is not None:
+        arrays["reference/height"] = np.asarray(net.reference.height, dtype=np.float64)
+    return arrays
+
+
+def _metadata_document(net: CamberNetwork) -> dict[str, Any]:
+    from skisnow import __version__
+
+    return {
+        "format": MODEL_FORMAT,
+        "format_version": MODEL_FORMAT_VERSION,
+        "skisnow_version": __version__,
+        "architecture": {
+            "load": net.architecture.load,
+            "collapse": list(net.architecture.collapse),
+            "camber": list(net.architecture.camber),
+        },
+        "n_members": len(net.members),
+        "scaling": asdict(net.scaling),
+        "domain": asdict(net.domain),
+        "reference": None
+        if net.reference is None
+        else {
+            "x_min": net.reference.x_min,
+            "x_max": net.reference.x_max,
+            "n": int(net.reference.height.size),
+        },
+        "metadata": dict(net.metadata),
+    }
+
+
+def _require(doc: Mapping[str, Any], key: str, where: str) -> Any:
+    if key not in doc:
+        raise FileFormatError(f"{where}: metadata key {key!r} is missing")
+    return doc[key]
+
+
+def _members_from_arrays(
+    arrays: Mapping[str, np.ndarray], architecture: Any, n_members: int, where: str
+) -> tuple[BlockNetwork, ...]:
+    from skisnow.ski import BlockNetwork
+
+    shapes = BlockNetwork.layer_shapes(architecture)
+    members = []
+    for k in range(n_members):
+        layers = {}
+        for name, expected in shapes.items():
+            parts = []
+            for part, shape in zip(("weight", "bias"), expected, strict=True):
+                key = f"member{k}/{name}/{part}"
+                if key not in arrays:
+                    raise FileFormatError(f"{where}: weight array {key!r} is missing")
+                a = arrays[key]
+                if a.shape != shape or a.dtype != np.float64:
+                    raise FileFormatError(
+                        f"{where}: array {key!r} has shape {a.shape} {a.dtype}, the "
+                        f"architecture {architecture.widths} needs {shape} float64"
+                    )
+                if not np.all(np.isfinite(a)):
+                    raise FileFormatError(f"{where}: array {key!r} holds NaN/inf")
+                parts.append(a)
+            layers[name] = tuple(parts)
+        members.append(BlockNetwork.from_layer_arrays(architecture, layers))
+    return tuple(members)
+
+
+def network_from_files(
+    arrays: Mapping[str, np.ndarray], doc: Mapping[str, Any], where: str
+) -> CamberNetwork:
+    """Rebuild a :class:`~skisnow.ski.CamberNetwork` from the .npz arrays and the .json document.
+
+    Raises
+    ------
+    FileFormatError
+        Foreign format, unsupported version, missing or invalid metadata, missing arrays or
+        arrays of the wrong shape, dtype or with NaN/inf; ``where`` names the files.
+    """
+    from skisnow.ski import Architecture, CamberNetwork, Domain, ReferenceProfile, Scaling
+
+    if doc.get("format") != MODEL_FORMAT:
+        raise FileFormatError(
+            f"{where}: not a skisnow camber-network model (format {doc.get('format')!r}, "
+            f"expected {MODEL_FORMAT!r})"
+        )
+    version = doc.get("format_version")
+    if version != MODEL_FORMAT_VERSION:
+        raise FileFormatError(
+            f"{where}: model file format version {version!r} (written by skisnow "
+            f"{doc.get('skisnow_version', '?')}) is not supported; this skisnow reads version "
+            f"{MODEL_FORMAT_VERSION}. Retrain with `skisnow train`."
+        )
+    try:
+        arch_doc = _require(doc, "architecture", where)
+        architecture = Architecture(
+            load=int(arch_doc["load"]),
+            collapse=tuple(int(w) for w in arch_doc["collapse"]),
+            camber=tuple(int(w) for w in arch_doc["camber"]),
+        )
+        scaling = Scaling(**{k: float(v) for k, v in _require(doc, "scaling", where).items()})
+        domain = Domain(**{k: float(v) for k, v in _require(doc, "domain", where).items()})
+        n_members = int(_require(doc, "n_members", where))
+    except (KeyError, TypeError, ValueError) as exc:
+        if isinstance(exc, FileFormatError):
+            raise
+        raise FileFormatError(f"{where}: invalid metadata ({exc})") from None
+    if n_members < 1:
+        raise FileFormatError(f"{where}: n_members must be >= 1, got {n_members}")
+    members = _members_from_arrays(arrays, architecture, n_members, where)
+    reference = None
+    ref_doc = doc.get("reference")
+    if ref_doc is not None:
+        h_ref = arrays.get("reference/height")
+        try:
+            n_ref, x0, x1 = int(ref_doc["n"]), float(ref_doc["x_min"]), float(ref_doc["x_max"])
+        except (KeyError, TypeError, ValueError) as exc:
+            raise FileFormatError(f"{where}: invalid reference-profile metadata ({exc})") from None
+        if h_ref is None or h_ref.shape != (n_ref,) or not np.all(np.isfinite(h_ref)):
+            raise FileFormatError(
+                f"{where}: reference profile array missing or not {n_ref} finite floats"
+            )
+        reference = ReferenceProfile(x_min=x0, x_max=x1, height=h_ref)
+    return CamberNetwork(
+        reference=reference,
+        architecture=architecture,
+        scaling=scaling,
+        domain=domain,
+        members=members,
+        metadata=dict(doc.get("metadata", {})),
+    )
+
+
+def save_network(net: CamberNetwork, path: str | Path) -> tuple[Path, Path]:
+    """Write ``PATH.npz`` (weights) and ``PATH.json`` (metadata); return both paths.
+
+    Parameters
+    ----------
+    net : CamberNetwork
+        The trained network.
+    path : str or Path
+        The model path; may end in ``.npz``, ``.json`` or nothing.
+
+    Returns
+    -------
+    tuple of Path
+        ``(PATH.npz, PATH.json)``. The JSON holds the file-format version, the skisnow version,
+        the architecture, scaling, domain, the sha256 of the weights file and the training
+        metadata (data hash, seed, measured errors). No pickle anywhere.
+    """
+    return write_model_files(path, network_arrays(net), _metadata_document(net))
+
+
+def load_network(path: str | Path) -> CamberNetwork:
+    """Read a model written by :func:`save_network` (``PATH.npz`` + ``PATH.json``).
+
+    Raises
+    ------
+    FileFormatError
+        A file is missing, corrupt or truncated (the weights' sha256 is checked against the
+        metadata) or from an incompatible format version.
+    """
+    arrays, doc, where = read_model_files(path)
+    return network_from_files(arrays, doc, where)
+
+
+@functools.cache
+def shipped_network(ski_name: str) -> CamberNetwork:
+    """The pretrained network of a shipped ski (``'classic'`` or ``'skate'``), loaded once.
+
+    The files are ``skisnow/ski/models/<name>.npz|.json``, trained on the virtual bench of that
+    ski (``benchmarks/bench_network.py --retrain`` regenerates them).
+
+    Raises
+    ------
+    InputError
+        No shipped network of that name (the message lists those available).
+    """
+    base = resources.files(MODELS_PACKAGE) / "models"
+    available = (
+        sorted(p.name[:-4] for p in base.iterdir() if p.name.endswith(".npz"))
+        if base.is_dir()
+        else []
+    )
+    if ski_name not in available:
+        raise InputError(
+            f"no shipped camber network for ski {ski_name!r}; available: {', '.join(available)}"
+        )
+    where = f"shipped model skisnow/ski/models/{ski_name}"
+    arrays, doc = parse_model_bytes(
+        (base / f"{ski_name}.npz").read_bytes(),
+        (base / f"{ski_name}.json").read_text(encoding="utf-8"),
+        where,
+    )
+    return network_from_files(arrays, doc, where)

@@ -41,6 +41,7 @@ _LAZY = {
             "BREITSCHAEDEL_THRESHOLD",
             "CLOSED_THRESHOLD",
             "SkiMetrics",
+    "TrainingProgress",
             "camber_height",
             "closing_load",
             "closing_load_from_bench",
@@ -53,11 +54,13 @@ _LAZY = {
         ),
         "skisnow.ski._metrics",
     ),
-    "CamberNetwork": "skisnow.ski._network",
-    "load_network": "skisnow.ski._network",
-    "save_network": "skisnow.ski._network",
-    "shipped_network": "skisnow.ski._network",
-    "train_network": "skisnow.ski._training",
+    **dict.fromkeys(
+        ("Architecture", "BlockNetwork", "CamberNetwork", "Domain", "ReferenceProfile", "Scaling"),
+        "skisnow.ski._network",
+    ),
+    # the model's file format lives in skisnow.io; re-exported here for convenience
+    **dict.fromkeys(("load_network", "save_network", "shipped_network"), "skisnow.io"),
+    **dict.fromkeys(("TrainingProgress", "train_network"), "skisnow.ski._training"),
 }
 
 
@@ -70,10 +73,16 @@ __all__ = [
     "DEFAULT_LOAD_POSITIONS",
     "DEFAULT_MASSES",
     "SHIPPED_SKIS",
+    "Architecture",
     "BeamSolution",
+    "BlockNetwork",
     "CamberNetwork",
+    "Domain",
+    "ReferenceProfile",
+    "Scaling",
     "Ski",
     "SkiMetrics",
+    "TrainingProgress",
     "beam_stiffness_matrix",
     "bench_grid",
     "camber_height",

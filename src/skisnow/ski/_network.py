@@ -27,12 +27,9 @@ context manager): importing skisnow never flips JAX's global configuration for o
 
 from __future__ import annotations
 
-import functools
 import warnings
 from collections.abc import Mapping, Sequence
-from dataclasses import asdict, dataclass, field
-from importlib import resources
-from pathlib import Path
+from dataclasses import dataclass, field
 from typing import Any, Literal
 
 import equinox as eqx
@@ -40,7 +37,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from skisnow._errors import DomainWarning, FileFormatError, InputError
+from skisnow._errors import DomainWarning, InputError
 
 __all__ = [
     "Architecture",
@@ -49,14 +46,8 @@ __all__ = [
     "Domain",
     "ReferenceProfile",
     "Scaling",
-    "load_network",
-    "save_network",
-    "shipped_network",
+    "x64",
 ]
-
-#: Version of the model file layout written by :func:`save_network` (bump on incompatible change).
-MODEL_FORMAT = "skisnow-camber-network"
-MODEL_FORMAT_VERSION = 1
 
 
 def x64():
@@ -301,6 +292,44 @@ class BlockNetwork(eqx.Module):
             a.collapse[-1] + a.camber[-1], "scalar", key=keys[6], dtype=f64
         )
 
+    # Layers by name: what a model file stores (see skisnow.io.save_network).
+    def layers(self) -> list[tuple[str, eqx.nn.Linear]]:
+        """The seven layers as ``(name, layer)``: ``load``, ``collapse0..2``, ``camber0..1``,
+        ``prediction`` (the names of the model file's arrays)."""
+        return [
+            ("load", self.load),
+            *[(f"collapse{i}", layer) for i, layer in enumerate(self.collapse)],
+            *[(f"camber{i}", layer) for i, layer in enumerate(self.camber)],
+            ("prediction", self.prediction),
+        ]
+
+    @classmethod
+    def layer_shapes(cls, architecture: Architecture) -> dict[str, tuple[tuple[int, ...], ...]]:
+        """``{name: (weight shape, bias shape)}`` of a member with ``architecture``."""
+        with x64():
+            template = eqx.filter_eval_shape(cls, architecture, key=jax.random.PRNGKey(0))
+        return {name: (layer.weight.shape, layer.bias.shape) for name, layer in template.layers()}
+
+    @classmethod
+    def from_layer_arrays(
+        cls, architecture: Architecture, arrays: Mapping[str, tuple[np.ndarray, np.ndarray]]
+    ) -> BlockNetwork:
+        """A member whose layers hold ``arrays[name] = (weight, bias)`` (float64, the shapes of
+        :meth:`layer_shapes`; the caller checks them)."""
+        with x64():
+            # shapes only (no random initialisation to run and compile: measured 3.4 s of a 4 s
+            # load); every leaf is replaced by a stored array below
+            member = eqx.filter_eval_shape(cls, architecture, key=jax.random.PRNGKey(0))
+            for name, _ in member.layers():
+                weight, bias = (jnp.asarray(a, dtype=jnp.float64) for a in arrays[name])
+
+                def where(m: BlockNetwork, name: str = name) -> tuple[jax.Array, jax.Array]:
+                    layer = dict(m.layers())[name]
+                    return layer.weight, layer.bias
+
+                member = eqx.tree_at(where, member, (weight, bias))
+        return member
+
     # Blocks on batches: rows are points (or load cases), columns are neurons.
     def load_block(self, load: jax.Array) -> jax.Array:
         """Block 1: (k, 2) scaled (m, x_m) → (k, n_load)."""
@@ -485,218 +514,3 @@ class CamberNetwork:
         mean = h.mean(axis=0)
         spread = h.std(axis=0, ddof=1) if h.shape[0] > 1 else np.zeros_like(mean)
         return (mean[0], spread[0]) if scalar else (mean, spread)
-
-
-# --------------------------------------------------------------------------------------------
-# Model files: weights .npz + metadata .json (never pickle)
-
-
-def _layer_items(member: BlockNetwork) -> list[tuple[str, eqx.nn.Linear]]:
-    return [
-        ("load", member.load),
-        *[(f"collapse{i}", layer) for i, layer in enumerate(member.collapse)],
-        *[(f"camber{i}", layer) for i, layer in enumerate(member.camber)],
-        ("prediction", member.prediction),
-    ]
-
-
-def network_arrays(net: CamberNetwork) -> dict[str, np.ndarray]:
-    """The weights as a flat ``{name: float64 array}`` dict (the .npz content)."""
-    arrays = {}
-    for k, member in enumerate(net.members):
-        for name, layer in _layer_items(member):
-            arrays[f"member{k}/{name}/weight"] = np.asarray(layer.weight, dtype=np.float64)
-            arrays[f"member{k}/{name}/bias"] = np.asarray(layer.bias, dtype=np.float64)
-    if net.reference is not None:
-        arrays["reference/height"] = np.asarray(net.reference.height, dtype=np.float64)
-    return arrays
-
-
-def _members_from_arrays(
-    arrays: Mapping[str, np.ndarray], architecture: Architecture, n_members: int, where: str
-) -> tuple[BlockNetwork, ...]:
-    members = []
-    with x64():
-        # shapes only (no random initialisation to run and compile: measured 3.4 s of a 4 s
-        # load); every leaf is replaced by a stored array below
-        template = eqx.filter_eval_shape(BlockNetwork, architecture, key=jax.random.PRNGKey(0))
-        for k in range(n_members):
-            member = template
-            for name, layer in _layer_items(template):
-                new = []
-                for part in ("weight", "bias"):
-                    key = f"member{k}/{name}/{part}"
-                    if key not in arrays:
-                        raise FileFormatError(f"{where}: weight array {key!r} is missing")
-                    a = arrays[key]
-                    ref = getattr(layer, part)
-                    if a.shape != ref.shape or a.dtype != np.float64:
-                        raise FileFormatError(
-                            f"{where}: array {key!r} has shape {a.shape} {a.dtype}, the "
-                            f"architecture {architecture.widths} needs {ref.shape} float64"
-                        )
-                    if not np.all(np.isfinite(a)):
-                        raise FileFormatError(f"{where}: array {key!r} holds NaN/inf")
-                    new.append(jnp.asarray(a))
-                member = _set_layer(member, name, *new)
-            members.append(member)
-    return tuple(members)
-
-
-def _get_layer(member: BlockNetwork, name: str) -> eqx.nn.Linear:
-    return dict(_layer_items(member))[name]
-
-
-def _set_layer(member: BlockNetwork, name: str, weight: jax.Array, bias: jax.Array) -> BlockNetwork:
-    def where(m: BlockNetwork):
-        layer = _get_layer(m, name)
-        return layer.weight, layer.bias
-
-    return eqx.tree_at(where, member, (weight, bias))
-
-
-def save_network(net: CamberNetwork, path: str | Path) -> tuple[Path, Path]:
-    """Write ``PATH.npz`` (weights) and ``PATH.json`` (metadata); return both paths.
-
-    ``path`` may end in ``.npz``, ``.json`` or nothing. The JSON holds the file-format version,
-    the skisnow version, the architecture, scaling, domain, the sha256 of the weights file and
-    the training metadata (data hash, seed, measured errors). No pickle anywhere.
-    """
-    from skisnow.io._model import write_model_files
-
-    return write_model_files(path, network_arrays(net), _metadata_document(net))
-
-
-def _metadata_document(net: CamberNetwork) -> dict[str, Any]:
-    from skisnow import __version__
-
-    return {
-        "format": MODEL_FORMAT,
-        "format_version": MODEL_FORMAT_VERSION,
-        "skisnow_version": __version__,
-        "architecture": {
-            "load": net.architecture.load,
-            "collapse": list(net.architecture.collapse),
-            "camber": list(net.architecture.camber),
-        },
-        "n_members": len(net.members),
-        "scaling": asdict(net.scaling),
-        "domain": asdict(net.domain),
-        "reference": None
-        if net.reference is None
-        else {
-            "x_min": net.reference.x_min,
-            "x_max": net.reference.x_max,
-            "n": int(net.reference.height.size),
-        },
-        "metadata": dict(net.metadata),
-    }
-
-
-def _require(doc: Mapping[str, Any], key: str, where: str) -> Any:
-    if key not in doc:
-        raise FileFormatError(f"{where}: metadata key {key!r} is missing")
-    return doc[key]
-
-
-def network_from_files(
-    arrays: Mapping[str, np.ndarray], doc: Mapping[str, Any], where: str
-) -> CamberNetwork:
-    """Rebuild a :class:`CamberNetwork` from the .npz arrays and the .json document."""
-    if doc.get("format") != MODEL_FORMAT:
-        raise FileFormatError(
-            f"{where}: not a skisnow camber-network model (format {doc.get('format')!r}, "
-            f"expected {MODEL_FORMAT!r})"
-        )
-    version = doc.get("format_version")
-    if version != MODEL_FORMAT_VERSION:
-        raise FileFormatError(
-            f"{where}: model file format version {version!r} (written by skisnow "
-            f"{doc.get('skisnow_version', '?')}) is not supported; this skisnow reads version "
-            f"{MODEL_FORMAT_VERSION}. Retrain with `skisnow train`."
-        )
-    try:
-        arch_doc = _require(doc, "architecture", where)
-        architecture = Architecture(
-            load=int(arch_doc["load"]),
-            collapse=tuple(int(w) for w in arch_doc["collapse"]),
-            camber=tuple(int(w) for w in arch_doc["camber"]),
-        )
-        scaling = Scaling(**{k: float(v) for k, v in _require(doc, "scaling", where).items()})
-        domain = Domain(**{k: float(v) for k, v in _require(doc, "domain", where).items()})
-        n_members = int(_require(doc, "n_members", where))
-    except (KeyError, TypeError, ValueError) as exc:
-        if isinstance(exc, FileFormatError):
-            raise
-        raise FileFormatError(f"{where}: invalid metadata ({exc})") from None
-    if n_members < 1:
-        raise FileFormatError(f"{where}: n_members must be >= 1, got {n_members}")
-    members = _members_from_arrays(arrays, architecture, n_members, where)
-    reference = None
-    ref_doc = doc.get("reference")
-    if ref_doc is not None:
-        h_ref = arrays.get("reference/height")
-        try:
-            n_ref, x0, x1 = int(ref_doc["n"]), float(ref_doc["x_min"]), float(ref_doc["x_max"])
-        except (KeyError, TypeError, ValueError) as exc:
-            raise FileFormatError(f"{where}: invalid reference-profile metadata ({exc})") from None
-        if h_ref is None or h_ref.shape != (n_ref,) or not np.all(np.isfinite(h_ref)):
-            raise FileFormatError(
-                f"{where}: reference profile array missing or not {n_ref} finite floats"
-            )
-        reference = ReferenceProfile(x_min=x0, x_max=x1, height=h_ref)
-    return CamberNetwork(
-        reference=reference,
-        architecture=architecture,
-        scaling=scaling,
-        domain=domain,
-        members=members,
-        metadata=dict(doc.get("metadata", {})),
-    )
-
-
-def load_network(path: str | Path) -> CamberNetwork:
-    """Read a model written by :func:`save_network` (``PATH.npz`` + ``PATH.json``).
-
-    Raises :class:`~skisnow.FileFormatError` if a file is missing, corrupt or truncated (the
-    weights' sha256 is checked against the metadata) or from an incompatible format version.
-    """
-    from skisnow.io._model import read_model_files
-
-    arrays, doc, where = read_model_files(path)
-    return network_from_files(arrays, doc, where)
-
-
-def _load_shipped_bytes(npz: bytes, text: str, where: str) -> CamberNetwork:
-    from skisnow.io._model import parse_model_bytes
-
-    arrays, doc = parse_model_bytes(npz, text, where)
-    return network_from_files(arrays, doc, where)
-
-
-#: Directory of the pretrained networks shipped in the package.
-MODELS_PACKAGE = "skisnow.ski"
-
-
-@functools.cache
-def shipped_network(ski_name: str) -> CamberNetwork:
-    """The pretrained network of a shipped ski (``'classic'`` or ``'skate'``), loaded once.
-
-    The files are ``skisnow/ski/models/<name>.npz|.json``, trained on the virtual bench of that
-    ski (``benchmarks/bench_network.py --retrain`` regenerates them).
-    """
-    base = resources.files(MODELS_PACKAGE) / "models"
-    available = (
-        sorted(p.name[:-4] for p in base.iterdir() if p.name.endswith(".npz"))
-        if base.is_dir()
-        else []
-    )
-    if ski_name not in available:
-        raise InputError(
-            f"no shipped camber network for ski {ski_name!r}; available: {', '.join(available)}"
-        )
-    return _load_shipped_bytes(
-        (base / f"{ski_name}.npz").read_bytes(),
-        (base / f"{ski_name}.json").read_text(encoding="utf-8"),
-        f"shipped model skisnow/ski/models/{ski_name}",
-    )

@@ -67,7 +67,7 @@ def camber_profile(
         return xs, sol.sample(xs)
     if isinstance(ski_name, Ski):
         raise InputError("source='network' needs the name of a shipped ski, not a Ski object")
-    from skisnow.ski._network import shipped_network
+    from skisnow.io import shipped_network
 
     height = shipped_network(ski_name).predict(xs, masses, load_position)
     return xs, np.asarray(height, dtype=float)
