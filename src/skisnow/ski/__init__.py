@@ -41,7 +41,6 @@ _LAZY = {
             "BREITSCHAEDEL_THRESHOLD",
             "CLOSED_THRESHOLD",
             "SkiMetrics",
-    "TrainingProgress",
             "camber_height",
             "closing_load",
             "closing_load_from_bench",
