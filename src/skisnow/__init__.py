@@ -15,10 +15,12 @@ Inside the library every quantity is in SI units (m, N, Pa, kg, K or °C where t
 
 from importlib.metadata import PackageNotFoundError, version
 
+from skisnow._checks import allow_implausible
 from skisnow._errors import (
     ConvergenceError,
     DomainWarning,
     FileFormatError,
+    ImplausibleValueError,
     InputError,
     SkisnowError,
     UnsupportedLoadError,
@@ -33,8 +35,10 @@ __all__ = [
     "ConvergenceError",
     "DomainWarning",
     "FileFormatError",
+    "ImplausibleValueError",
     "InputError",
     "SkisnowError",
     "UnsupportedLoadError",
     "__version__",
+    "allow_implausible",
 ]

@@ -17,6 +17,12 @@ class InputError(ValueError, SkisnowError):
     """An argument or a value read from a file is invalid (NaN, out of range, wrong shape...)."""
 
 
+class ImplausibleValueError(InputError):
+    """A value is physically possible but implausible for a ski (often a unit slip: heights in
+    metres in a millimetre column). The message says which unit was probably meant; the CLI's
+    ``--allow-implausible`` (library: ``skisnow.allow_implausible()``) accepts it."""
+
+
 class FileFormatError(InputError):
     """A file cannot be read: unknown format, corrupt, truncated, or failing validation.
 

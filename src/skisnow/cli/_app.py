@@ -37,15 +37,28 @@ def _root(
     version: bool = typer.Option(
         False, "--version", callback=_version_callback, is_eager=True, help="Print the version."
     ),
+    allow_implausible: bool = typer.Option(
+        False,
+        "--allow-implausible",
+        help="Accept values that are possible but implausible for a ski (e.g. a 3 m ski); "
+        "impossible ones are still refused.",
+    ),
 ) -> None:
     """skisnow: how a cross-country ski meets the snow."""
     _state["debug"] = debug
+    if allow_implausible:
+        from skisnow._checks import _ALLOW
+
+        _ALLOW.set(True)
 
 
 def main(argv: list[str] | None = None) -> int:
     """Run the CLI; return the exit code (errors: one line on stderr, exit 1)."""
     args = sys.argv[1:] if argv is None else argv
     _state["debug"] = "--debug" in args
+    from skisnow._checks import _ALLOW
+
+    token = _ALLOW.set(None)  # each run starts strict (or as SKISNOW_ALLOW_IMPLAUSIBLE says)
     try:
         # In non-standalone mode Click returns the code of a `typer.Exit(code)` / Ctrl-C (130)
         # instead of raising it: pass it on, or an interrupted command would report success.
@@ -69,4 +82,6 @@ def main(argv: list[str] | None = None) -> int:
         name = type(exc).__name__
         typer.echo(f"skisnow: error: {exc} [{name}]", err=True)
         return 1
+    finally:
+        _ALLOW.reset(token)
     return code if isinstance(code, int) else 0
