@@ -136,3 +136,48 @@ def test_benchdata_validates_in_memory() -> None:
         BenchData(table=_small_table().drop(columns="ski"))
     with pytest.raises(InputError, match="JSON"):
         BenchData(table=_small_table(), metadata={"bad": object()})
+
+
+def _bilinear_bench() -> BenchData:
+    """Two skis, h = 0.5 + 0.01·x − 0.004·m [mm] at two positions: bilinear, so linear
+    interpolation in x and in mass must reproduce it exactly."""
+    x = np.linspace(-100.0, 100.0, 11)
+    rows = [
+        {
+            "ski": s,
+            "mass_kg": m,
+            "load_position_mm": p,
+            "x_mm": xi,
+            "height_mm": 0.5 + 0.01 * xi - 0.004 * m,
+        }
+        for s in ("a", "b")
+        for m in (20.0, 40.0, 80.0)
+        for p in (-80.0, 0.0)
+        for xi in x
+    ]
+    return BenchData(pd.DataFrame(rows), {"ski": "a", "kick_zone_mm": [-200.0, 300.0]})
+
+
+def test_bench_queries_interpolate_exactly_on_a_bilinear_bench() -> None:
+    b = _bilinear_bench()
+    masses, h = b.heights_at(load_position_mm=-80.0, x_mm=25.0, ski="b")
+    np.testing.assert_array_equal(masses, [20.0, 40.0, 80.0])
+    np.testing.assert_allclose(h, 0.5 + 0.25 - 0.004 * masses, rtol=0, atol=1e-12)
+    x, h = b.profile_at_mass(mass_kg=50.0, load_position_mm=0.0, ski="a")
+    np.testing.assert_allclose(h, 0.5 + 0.01 * x - 0.2, rtol=0, atol=1e-12)
+    assert b.kick_zone_mm("a") == (-200.0, 300.0) and b.describes_kick_zone("a")
+    assert b.kick_zone_mm("b") is None and not b.describes_kick_zone("b")
+
+
+def test_bench_queries_name_what_exists() -> None:
+    b = _bilinear_bench()
+    with pytest.raises(InputError, match="several skis"):
+        b.heights_at(load_position_mm=0.0)
+    with pytest.raises(InputError, match="not in the bench"):
+        b.ski_name("c")
+    with pytest.raises(
+        InputError, match=r"no profiles at load_position_mm = -120; it has \[-80.0, 0.0\]"
+    ):
+        b.heights_at(load_position_mm=-120.0, ski="a")
+    with pytest.raises(InputError, match="outside the bench's masses"):
+        b.profile_at_mass(mass_kg=100.0, load_position_mm=0.0, ski="a")

@@ -108,18 +108,30 @@ def test_bench_hash_ignores_row_order(small_bench):
 
 
 def test_bad_bench_tables_are_rejected(small_bench):
+    """A table is checked by the one bench validation (``skisnow.io.validate_bench_table``).
+
+    Changed in the refactor: the training used to check columns and finiteness itself (messages
+    "lacks column", "row 5: column height_mm" with a 0-based row); it now reports what the file
+    reader reports (1-based data rows, the column quoted) and also rejects what the reader
+    rejects, e.g. a profile whose x does not increase.
+    """
+    from skisnow import FileFormatError
     from skisnow.ski import train_network
 
     t = small_bench.table
-    with pytest.raises(InputError, match="lacks column"):
+    with pytest.raises(FileFormatError, match="missing column 'height_mm'"):
         train_network(t.drop(columns=["height_mm"]))
     two = pd.concat([t, t.assign(ski="other")])
     with pytest.raises(InputError, match="one ski"):
         train_network(two)
     bad = t.copy()
     bad.loc[5, "height_mm"] = np.nan
-    with pytest.raises(InputError, match="row 5: column height_mm"):
+    with pytest.raises(FileFormatError, match="row 6, column 'height_mm'"):
         train_network(bad)
+    unordered = t.copy()
+    unordered.loc[[3, 4], "x_mm"] = unordered.loc[[4, 3], "x_mm"].to_numpy()
+    with pytest.raises(FileFormatError, match="does not increase"):
+        train_network(unordered)
     one = t[(t.mass_kg == t.mass_kg.iloc[0]) & (t.load_position_mm == t.load_position_mm.iloc[0])]
     with pytest.raises(InputError, match="at least 3"):
         train_network(one)

@@ -201,6 +201,113 @@ class BenchData:
         cols = ["ski", "mass_kg", "load_position_mm"]
         return self.table[cols].drop_duplicates().reset_index(drop=True)
 
+    def ski_name(self, ski: str | None = None) -> str:
+        """The ski a query is about: ``ski`` if the table holds it, else the only ski.
+
+        Raises
+        ------
+        InputError
+            ``ski`` is not in the table, or it is ``None`` and the table holds several skis.
+        """
+        names = self.skis
+        if ski is None:
+            if len(names) != 1:
+                raise InputError(f"the bench holds several skis {names}; choose one with ski=")
+            return names[0]
+        if ski not in names:
+            raise InputError(f"ski {ski!r} is not in the bench (it holds {names})")
+        return ski
+
+    def _at_position(self, ski: str, load_position_mm: float) -> pd.DataFrame:
+        """Rows of ``ski`` at one load position; InputError lists the positions if none."""
+        t = self.table[self.table["ski"] == ski]
+        sub = t[np.isclose(t["load_position_mm"].to_numpy(), load_position_mm, atol=1e-6)]
+        if sub.empty:
+            raise InputError(
+                f"the bench has no profiles at load_position_mm = {load_position_mm:g}; it has "
+                f"{sorted(float(v) for v in np.unique(t['load_position_mm']))}"
+            )
+        return sub
+
+    def heights_at(
+        self, *, load_position_mm: float, x_mm: float = 0.0, ski: str | None = None
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """Camber height at one station over the bench's masses at one load position.
+
+        Parameters
+        ----------
+        load_position_mm : float
+            The load position x_m [mm]; must be one of the bench's positions.
+        x_mm : float
+            The station [mm] (default the balance point), interpolated linearly in each profile.
+        ski : str, optional
+            Which ski (see :meth:`ski_name`).
+
+        Returns
+        -------
+        mass_kg, height_mm : ndarray
+            The masses in increasing order and h(x_mm) of each profile.
+        """
+        sub = self._at_position(self.ski_name(ski), load_position_mm)
+        masses, heights = [], []
+        for m, grp in sub.groupby("mass_kg", sort=True):
+            masses.append(float(m))
+            heights.append(np.interp(x_mm, grp["x_mm"].to_numpy(), grp["height_mm"].to_numpy()))
+        return np.array(masses), np.array(heights)
+
+    def profile_at_mass(
+        self, *, mass_kg: float, load_position_mm: float, ski: str | None = None
+    ) -> tuple[np.ndarray, np.ndarray]:
+        """(x_mm, height_mm) at ``mass_kg``, linear in mass between the two nearest profiles.
+
+        The stations are those of the lighter profile; the heavier one is interpolated onto
+        them. ``mass_kg`` must lie within the bench's masses at ``load_position_mm``.
+        """
+        sub = self._at_position(self.ski_name(ski), load_position_mm)
+        masses = np.unique(sub["mass_kg"].to_numpy())
+        if not (masses[0] - 1e-9 <= mass_kg <= masses[-1] + 1e-9):
+            raise InputError(
+                f"mass {mass_kg} kg is outside the bench's masses [{masses[0]}, {masses[-1]}] "
+                f"kg at load_position_mm = {load_position_mm:g}"
+            )
+        j = (
+            int(np.clip(np.searchsorted(masses, mass_kg), 1, masses.size - 1))
+            if masses.size > 1
+            else 0
+        )
+        lo_m, hi_m = masses[max(j - 1, 0)], masses[j]
+        g_lo = sub[sub["mass_kg"] == lo_m]
+        g_hi = sub[sub["mass_kg"] == hi_m]
+        x = g_lo["x_mm"].to_numpy()
+        h_lo = g_lo["height_mm"].to_numpy()
+        h_hi = np.interp(x, g_hi["x_mm"].to_numpy(), g_hi["height_mm"].to_numpy())
+        wgt = 0.0 if hi_m == lo_m else (mass_kg - lo_m) / (hi_m - lo_m)
+        return x, (1 - wgt) * h_lo + wgt * h_hi
+
+    def kick_zone_mm(self, ski: str | None = None) -> tuple[float, float] | None:
+        """The kick zone (start, end) [mm] the metadata gives for ``ski``, else ``None``.
+
+        The metadata describes a ski when its ``ski`` entry names it; ``kick_zone_mm`` is
+        ``[start, end]`` in mm or ``null`` (no kick zone, a skate ski).
+        """
+        name = self.ski_name(ski)
+        md = self.metadata
+        if md.get("ski") != name or md.get("kick_zone_mm") is None:
+            return None
+        kz = md["kick_zone_mm"]
+        try:
+            a, b = (float(v) for v in kz)
+        except (TypeError, ValueError):
+            raise InputError(
+                f"bench metadata kick_zone_mm must be [start, end] in mm or null, got {kz!r}"
+            ) from None
+        return a, b
+
+    def describes_kick_zone(self, ski: str | None = None) -> bool:
+        """Whether the metadata says anything (a zone or ``null``) about ``ski``'s kick zone."""
+        md = self.metadata
+        return md.get("ski") == self.ski_name(ski) and "kick_zone_mm" in md
+
     def profile(
         self, *, mass_kg: float, load_position_mm: float, ski: str | None = None
     ) -> tuple[np.ndarray, np.ndarray]:

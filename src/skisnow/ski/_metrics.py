@@ -26,7 +26,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from skisnow._errors import InputError
 from skisnow.constants import STANDARD_GRAVITY
-from skisnow.io._bench import BenchData
+from skisnow.io import BenchData
 from skisnow.ski._beam import DEFAULT_BOOT_LENGTH, DEFAULT_N_ELEMENTS, solve_beam
 from skisnow.ski._skis import SHIPPED_SKIS, Ski, get_ski
 
@@ -215,37 +215,6 @@ def closing_load(
     return hi
 
 
-def _bench_ski(bench: BenchData, ski: str | None) -> str:
-    names = bench.skis
-    if ski is None:
-        if len(names) != 1:
-            raise InputError(f"the bench holds several skis {names}; choose one with ski=")
-        return names[0]
-    if ski not in names:
-        raise InputError(f"ski {ski!r} is not in the bench (it holds {names})")
-    return ski
-
-
-def _bench_heights_at(
-    bench: BenchData, ski: str, load_position: float, at: float
-) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """(masses [kg], h(at) [m]) at one load position from the bench."""
-    t = bench.table[bench.table["ski"] == ski]
-    pos_mm = load_position * 1e3
-    sel = np.isclose(t["load_position_mm"].to_numpy(), pos_mm, atol=1e-6)
-    if not sel.any():
-        raise InputError(
-            f"the bench has no profiles at load_position_mm = {pos_mm:g}; it has "
-            f"{sorted(float(v) for v in np.unique(t['load_position_mm']))}"
-        )
-    sub = t[sel]
-    masses, hs = [], []
-    for m, grp in sub.groupby("mass_kg", sort=True):
-        masses.append(float(m))
-        hs.append(np.interp(at * 1e3, grp["x_mm"].to_numpy(), grp["height_mm"].to_numpy()) * 1e-3)
-    return np.array(masses), np.array(hs)
-
-
 def closing_load_from_bench(
     bench: BenchData,
     *,
@@ -259,8 +228,8 @@ def closing_load_from_bench(
     Linear interpolation in mass between the two bench masses around the crossing. ``inf`` if
     the ski never closes within the bench's masses; the smallest mass if already closed there.
     """
-    name = _bench_ski(bench, ski)
-    ms, hs = _bench_heights_at(bench, name, load_position, at)
+    ms, hs_mm = bench.heights_at(load_position_mm=load_position * 1e3, x_mm=at * 1e3, ski=ski)
+    hs = hs_mm * 1e-3
     below = np.flatnonzero(hs < threshold)
     if below.size == 0:
         return float("inf")
@@ -274,48 +243,17 @@ def closing_load_from_bench(
 def _bench_profile_at_mass(
     bench: BenchData, ski: str, mass: float, load_position: float
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Profile (x [m], h [m]) at ``mass`` by linear interpolation between bench masses."""
-    t = bench.table[bench.table["ski"] == ski]
-    pos_mm = load_position * 1e3
-    sub = t[np.isclose(t["load_position_mm"].to_numpy(), pos_mm, atol=1e-6)]
-    if sub.empty:
-        raise InputError(
-            f"the bench has no profiles at load_position_mm = {pos_mm:g}; it has "
-            f"{sorted(float(v) for v in np.unique(t['load_position_mm']))}"
-        )
-    masses = np.unique(sub["mass_kg"].to_numpy())
-    if not (masses[0] - 1e-9 <= mass <= masses[-1] + 1e-9):
-        raise InputError(
-            f"mass {mass} kg is outside the bench's masses [{masses[0]}, {masses[-1]}] kg at "
-            f"load_position_mm = {pos_mm:g}"
-        )
-    j = int(np.clip(np.searchsorted(masses, mass), 1, masses.size - 1)) if masses.size > 1 else 0
-    lo_m = masses[max(j - 1, 0)]
-    hi_m = masses[j]
-    g_lo = sub[sub["mass_kg"] == lo_m]
-    g_hi = sub[sub["mass_kg"] == hi_m]
-    x = g_lo["x_mm"].to_numpy()
-    h_lo = g_lo["height_mm"].to_numpy()
-    h_hi = np.interp(x, g_hi["x_mm"].to_numpy(), g_hi["height_mm"].to_numpy())
-    wgt = 0.0 if hi_m == lo_m else (mass - lo_m) / (hi_m - lo_m)
-    return x * 1e-3, ((1 - wgt) * h_lo + wgt * h_hi) * 1e-3
+    """Profile (x [m], h [m]) at ``mass`` [kg] interpolated between the bench's masses."""
+    x_mm, h_mm = bench.profile_at_mass(mass_kg=mass, load_position_mm=load_position * 1e3, ski=ski)
+    return x_mm * 1e-3, h_mm * 1e-3
 
 
 def _bench_kick_zone(bench: BenchData, name: str) -> tuple[float, float] | None:
-    """Kick zone [m] of ski ``name``: from the metadata if it describes that ski (``ski`` and
-    ``kick_zone_mm``), else from the shipped ski of that name, else none."""
-    md = bench.metadata
-    if md.get("ski") == name and "kick_zone_mm" in md:
-        kz = md["kick_zone_mm"]
-        if kz is None:
-            return None
-        try:
-            a, b = (float(v) * 1e-3 for v in kz)
-        except (TypeError, ValueError):
-            raise InputError(
-                f"bench metadata kick_zone_mm must be [start, end] in mm or null, got {kz!r}"
-            ) from None
-        return a, b
+    """Kick zone [m] of ski ``name``: from the metadata if it describes that ski, else from the
+    shipped ski of that name, else none."""
+    if bench.describes_kick_zone(name):
+        kz = bench.kick_zone_mm(name)
+        return None if kz is None else (kz[0] * 1e-3, kz[1] * 1e-3)
     if name in SHIPPED_SKIS:
         return get_ski(name).kick_zone
     return None
@@ -426,7 +364,7 @@ def ski_metrics(
     if not (np.isfinite(body_mass) and body_mass > 0):
         raise InputError(f"body_mass must be > 0 kg, got {body_mass}")
     if isinstance(source, BenchData):
-        name = _bench_ski(source, ski)
+        name = source.ski_name(ski)
         kick = _bench_kick_zone(source, name)
         return _metrics_from_profiles(
             name=name,

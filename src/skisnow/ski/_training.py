@@ -19,6 +19,7 @@ Residuals near contact (bench height below ``contact_height``) can be weighted u
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import time
 from collections.abc import Callable, Sequence
@@ -33,6 +34,7 @@ import pandas as pd
 from jax.flatten_util import ravel_pytree
 
 from skisnow._errors import InputError
+from skisnow.io import BENCH_COLUMNS, BenchData
 from skisnow.ski._network import (
     Architecture,
     BlockNetwork,
@@ -44,8 +46,6 @@ from skisnow.ski._network import (
 )
 
 __all__ = ["TrainingProgress", "bench_sha256", "split_conditions", "train_network"]
-
-BENCH_COLUMNS = ("ski", "mass_kg", "load_position_mm", "x_mm", "height_mm")
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -67,39 +67,34 @@ class TrainingProgress:
     val_max_um: float
 
 
-def _bench_table(bench: Any) -> pd.DataFrame:
-    table = getattr(bench, "table", bench)
-    if not isinstance(table, pd.DataFrame):
+def _bench_table(bench: BenchData | pd.DataFrame) -> pd.DataFrame:
+    """The validated table of one ski: :class:`~skisnow.io.BenchData`'s validation (the one
+    definition of a valid bench table) plus the training's own rule, one ski per network."""
+    if isinstance(bench, pd.DataFrame):
+        bench = BenchData(bench)  # validates (FileFormatError naming the row and column)
+    elif not isinstance(bench, BenchData):
         raise InputError(
             "bench must be a skisnow.io.BenchData or a pandas DataFrame, "
             f"got {type(bench).__name__}"
         )
-    missing = [c for c in BENCH_COLUMNS if c not in table.columns]
-    if missing:
+    if len(bench.skis) != 1:
         raise InputError(
-            f"bench table lacks column(s) {missing}; needed: {', '.join(BENCH_COLUMNS)}"
+            "bench table must hold one ski (a network is trained per ski), "
+            f"found {list(bench.skis)}"
         )
-    skis = pd.unique(table["ski"])
-    if len(skis) != 1:
-        raise InputError(
-            f"bench table must hold one ski (a network is trained per ski), found {list(skis)}"
-        )
-    num = table[list(BENCH_COLUMNS[1:])]
-    try:
-        values = num.to_numpy(dtype=float)
-    except (TypeError, ValueError):
-        raise InputError(
-            "bench columns mass_kg, load_position_mm, x_mm, height_mm must be numeric"
-        ) from None
-    bad = ~np.isfinite(values)
-    if bad.any():
-        row, col = np.argwhere(bad)[0]
-        raise InputError(f"bench table row {row}: column {BENCH_COLUMNS[1 + col]} is not finite")
-    return table
+    return bench.table
 
 
-def bench_sha256(bench: Any) -> str:
-    """sha256 of the bench data's content (ski name + rows sorted, float64), order-independent."""
+def bench_sha256(bench: BenchData | pd.DataFrame) -> str:
+    """sha256 of the bench data's content (ski name + rows sorted, float64), order-independent.
+
+    A DataFrame is put in bench order (by mass, position, x) before it is validated, so that
+    the same samples in any row order give the same hash.
+    """
+    if isinstance(bench, pd.DataFrame) and set(BENCH_COLUMNS) <= set(bench.columns):
+        # mixed types in a column cannot be sorted: the validation below names the bad value
+        with contextlib.suppress(TypeError):
+            bench = bench.sort_values(list(BENCH_COLUMNS[1:]), kind="stable")
     table = _bench_table(bench)
     cols = list(BENCH_COLUMNS[1:])
     values = table[cols].to_numpy(dtype=np.float64)
@@ -144,7 +139,7 @@ def _loss_weights(height: np.ndarray, contact_height: float, contact_weight: flo
 
 
 def train_network(
-    bench: Any,
+    bench: BenchData | pd.DataFrame,
     *,
     seed: int = 0,
     architecture: Architecture | Sequence[int] | str | None = None,
