@@ -9,9 +9,9 @@ import argparse
 from pathlib import Path
 
 from skisnow.constants import MPA
+from skisnow.pipeline import solve_case
 from skisnow.plot._contact import plot_contact
 from skisnow.plot._style import save_figure
-from skisnow.sweep import SweepSpec, solve_point
 
 
 def parser(description: str) -> argparse.ArgumentParser:
@@ -33,17 +33,15 @@ def case(
     stem: str,
 ) -> dict:
     """Solve one case, save its picture, return its zone numbers (field units)."""
-    spec = SweepSpec(
-        skis=(ski,),
-        masses=(mass_kg,),
-        load_positions=(load_position_mm * 1e-3,),
-        snow_moduli=(snow_modulus_mpa * MPA,),
+    case_ = solve_case(
+        ski,
+        mass=mass_kg,
+        load_position=load_position_mm * 1e-3,
+        snow_modulus=snow_modulus_mpa * MPA,
         profile_source=args.profile_source,
         n_points=1024 if args.small else 4096,
     )
-    solution, zones = solve_point(
-        spec, ski, mass_kg, load_position_mm * 1e-3, snow_modulus_mpa * MPA
-    )
+    solution, zones = case_.solution, case_.zones
     title = (
         f"{ski}: m = {mass_kg:g} kg at x_m = {load_position_mm:g} mm, "
         f"E_counter = {snow_modulus_mpa:g} MPa"

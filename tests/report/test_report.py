@@ -54,11 +54,10 @@ def test_report_is_self_contained(report: Path) -> None:
 
 
 def test_report_numbers_are_the_solvers(report: Path) -> None:
-    from skisnow.sweep._point import solve_point
+    from skisnow.pipeline import solve_case
 
-    spec = SweepSpec(skis=(SKI,), masses=(60.0,), load_positions=(-0.12,),
-                     snow_moduli=(100e6,), profile_source="beam", n_points=1024)  # fmt: skip
-    _, zones = solve_point(spec, SKI, 60.0, -0.12, 100e6)
+    zones = solve_case(SKI, mass=60.0, load_position=-0.12, snow_modulus=100e6,
+                       profile_source="beam", n_points=1024).zones  # fmt: skip
     text = report.read_text(encoding="utf-8")
     row = re.search(r"<tr><td>full \(60 kg\)</td><td>100</td><td>rear</td><td>([^<]+)</td>", text)
     assert row is not None

@@ -92,22 +92,21 @@ def run_contact_demo(
     """
     import numpy as np
 
+    from skisnow.pipeline import solve_case
     from skisnow.plot._contact import plot_contact
     from skisnow.plot._maps import plot_load_share, plot_zone_map
     from skisnow.plot._style import save_figure
     from skisnow.report import write_report
     from skisnow.ski import SHIPPED_SKIS
-    from skisnow.sweep import SweepSpec, open_sweep, run_sweep, solve_point
+    from skisnow.sweep import SweepSpec, open_sweep, run_sweep
 
     out.mkdir(parents=True, exist_ok=True)
     files: list[str] = []
     cases = []
     for fig_no, ski, m, x_mm, e_mpa in PAPER_CASES:
-        spec = SweepSpec(
-            skis=(ski,), masses=(m,), load_positions=(x_mm * 1e-3,), snow_moduli=(e_mpa * 1e6,),
-            profile_source=profile_source, n_points=n_points,
-        )  # fmt: skip
-        solution, zones = solve_point(spec, ski, m, x_mm * 1e-3, e_mpa * 1e6)
+        case = solve_case(ski, mass=m, load_position=x_mm * 1e-3, snow_modulus=e_mpa * 1e6,
+                          profile_source=profile_source, n_points=n_points)  # fmt: skip
+        solution, zones = case.solution, case.zones
         stem = f"{fig_no}_{ski}_{m:g}kg_x{x_mm:g}mm_{e_mpa:g}MPa"
         title = f"{ski}: m = {m:g} kg at x_m = {x_mm:g} mm, E_counter = {e_mpa:g} MPa"
         files += [str(p) for p in save_figure(plot_contact(solution, zones, title=title),

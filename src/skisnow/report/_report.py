@@ -73,23 +73,18 @@ def _standard_loads(
     profile_source: str,
     n_points: int,
 ) -> tuple[Section, list[tuple[float, float, Any, Any]]]:
-    from skisnow.sweep import SweepSpec
-    from skisnow.sweep._point import solve_point
+    from skisnow.pipeline import solve_case
 
     masses = (body_mass / 2, body_mass)
-    spec = SweepSpec(
-        skis=(ski,),
-        masses=masses,
-        load_positions=(load_position,),
-        snow_moduli=tuple(snows),
-        profile_source=profile_source,
-        n_points=n_points,
-    )
     rows = []
     solutions = []
     for m, label in zip(masses, ("half", "full"), strict=True):
-        for e in spec.snow_moduli:
-            solution, zones = solve_point(spec, ski, m, load_position, e)
+        for e in sorted(float(v) for v in snows):
+            case = solve_case(
+                ski, mass=m, load_position=load_position, snow_modulus=e,
+                profile_source=profile_source, n_points=n_points,
+            )  # fmt: skip
+            solution, zones = case.solution, case.zones
             solutions.append((m, e, solution, zones))
             for zname in ("rear", "middle", "front"):
                 z = zones[zname]
@@ -130,7 +125,7 @@ def _standard_loads(
         (
             f"Loaded profile from the {profile_source}; contact on elastic snow with force and "
             "moment balance (Kalliorinne et al. 2023, eq. 2–3), ski base 900 MPa, ν = 0.3, "
-            f"{spec.model} model, {n_points} stations along the ski.",
+            f"strip model, {n_points} stations along the ski.",
         ),
         (table,),
     )

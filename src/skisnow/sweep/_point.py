@@ -1,16 +1,8 @@
-"""The physics of one sweep chunk: loaded profile + contact solve + zone metrics, per mass.
-
-For one ski, one load position x_m and one snow modulus E_counter, along the masses m (ascending):
-
-1. the rigid loaded camber profile h(x) = f(x, m, x_m) (Kalliorinne et al. 2023, eq. 1) from
-   ``skisnow.ski.camber_profile`` (the shipped network, or the beam);
-2. the apparent contact of that profile on an elastic half-space of equivalent modulus E'
-   (eq. 2, E_base and ν of the spec) with force and moment balance about x_m (eq. 3), from
-   ``skisnow.contact.solve_contact``, warm-started from the pressure of the previous (lighter)
-   mass: along the load path the contact patches move little, so the previous pressure is a
-   good start;
-3. the zone metrics (rear / middle / front / total, Breitschädel 50 µm) from
-   ``skisnow.contact.contact_zones``; the classic ski's kick zone defines its middle zone.
+"""The physics of one sweep chunk: every mass of one (ski, x_m, E_counter), each point one case
+of :func:`skisnow.pipeline.solve_case` (loaded profile, contact with force and moment balance,
+zones; Kalliorinne et al. 2023, eq. 1–3), warm-started from the pressure of the previous
+(lighter) mass: along the load path the contact patches move little, so the previous pressure is
+a good start.
 
 A point whose load the profile cannot carry (the solver raises :class:`UnsupportedLoadError`, e.g.
 contact reaching a ski end) is recorded as NaN with ``converged = False`` rather than failing the
@@ -19,68 +11,37 @@ retries it).
 
 Loaded profiles do not depend on the snow: :func:`loaded_profiles` computes those of all masses
 of one (ski, x_m) once, in the sweep's client (the camber network's JAX never runs on the Dask
-workers), and they are cached per process when computed point by point.
+workers); beam profiles are cached per process by :mod:`skisnow.pipeline`.
 """
 
 from __future__ import annotations
 
-from functools import lru_cache
-
 import numpy as np
 
 from skisnow._errors import UnsupportedLoadError
-from skisnow.constants import STANDARD_GRAVITY
 from skisnow.sweep._grid import SweepSpec
 
 #: Units of the stored variables: SI value × factor.
 _TO_FIELD = {"length": 1e3, "area": 1e4, "mean_pressure": 1e-3, "max_pressure": 1e-3}
 
 
-@lru_cache(maxsize=4096)
-def _profile(
-    ski_name: str, source: str, mass: float, load_position: float, n_points: int
-) -> tuple[np.ndarray, np.ndarray]:
-    """Loaded profile (x, h) [m] on ``n_points`` uniform stations from tail to tip (cached)."""
-    from skisnow.ski import camber_profile, get_ski
-
-    ski = get_ski(ski_name)
-    x = np.linspace(ski.x_tail, ski.x_tip, n_points)
-    xs, h = camber_profile(ski_name, mass=mass, load_position=load_position, x=x, source=source)  # type: ignore[arg-type]
-    xs, h = np.asarray(xs, dtype=float), np.asarray(h, dtype=float)
-    xs.setflags(write=False)
-    h.setflags(write=False)
-    return xs, h
-
-
 def loaded_profiles(spec: SweepSpec, ski_name: str, load_position: float) -> dict[str, np.ndarray]:
     """The loaded profiles of every mass of ``spec`` at one (ski, x_m): ``{"x": (n_points,),
-    "height": (n_mass, n_points)}`` [m]. Shared by all snow moduli of the (ski, x_m); the sweep
-    computes it once in the client and scatters it to the workers.
-
-    Network profiles come from one batched call over all masses (measured 0.17 s for 126 masses
-    × 4096 stations, against 9 s one mass at a time); beam profiles mass by mass, a load the beam
-    cannot carry giving a row of NaN (recorded as a non-converged point).
+    "height": (n_mass, n_points)}`` [m], from :func:`skisnow.pipeline.loaded_profiles` (one
+    batched network call; a load the beam cannot carry gives a row of NaN, recorded as a
+    non-converged point). Shared by all snow moduli of the (ski, x_m); the sweep computes it
+    once in the client and scatters it to the workers.
     """
-    from skisnow.ski import camber_profile, get_ski
+    from skisnow import pipeline
 
-    ski = get_ski(ski_name)  # an unknown ski is an InputError here, in the client
-    x = np.linspace(ski.x_tail, ski.x_tip, spec.n_points)
-    masses = np.asarray(spec.masses, dtype=float)
-    if spec.profile_source == "network":
-        x, heights = camber_profile(
-            ski_name, mass=masses, load_position=float(load_position), x=x, source="network"
-        )
-        return {"x": np.asarray(x), "height": np.asarray(heights).reshape(masses.size, x.size)}
-    rows = []
-    for mass in masses:
-        try:
-            x, h = _profile(
-                ski_name, spec.profile_source, float(mass), float(load_position), spec.n_points
-            )
-        except UnsupportedLoadError:
-            h = np.full(spec.n_points, np.nan)
-        rows.append(h)
-    return {"x": np.asarray(x), "height": np.vstack(rows)}
+    x, heights = pipeline.loaded_profiles(
+        ski_name,
+        spec.masses,
+        float(load_position),
+        profile_source=spec.profile_source,
+        n_points=spec.n_points,
+    )
+    return {"x": x, "height": heights}
 
 
 def solve_point(
@@ -93,38 +54,30 @@ def solve_point(
     initial_pressure: np.ndarray | None = None,
     profile: tuple[np.ndarray, np.ndarray] | None = None,
 ):
-    """One point of a sweep: ``(ContactSolution, ZoneMetrics)`` (SI units).
+    """One point of a sweep as a :class:`skisnow.pipeline.Case` (SI units), solved by
+    :func:`skisnow.pipeline.solve_case` with the settings of ``spec``.
 
-    ``profile`` (x, h) [m] skips computing the loaded profile. Raises
-    :class:`UnsupportedLoadError` where the profile cannot carry the load.
+    ``profile`` (x, h) [m] skips computing the loaded profile; ``initial_pressure`` warm-starts
+    the contact iteration. Raises :class:`UnsupportedLoadError` where the profile cannot carry
+    the load.
     """
-    from skisnow.contact import contact_zones, effective_modulus, solve_contact
-    from skisnow.ski import get_ski
+    from skisnow.pipeline import solve_case
 
-    ski = get_ski(ski_name)
-    if profile is None:
-        x, h = _profile(
-            ski_name, spec.profile_source, float(mass), float(load_position), spec.n_points
-        )
-    else:
-        x, h = profile
-        if not np.all(np.isfinite(h)):
-            raise UnsupportedLoadError(f"no loaded profile of {ski_name} at m = {mass} kg")
-    modulus = effective_modulus(snow_modulus, spec.base_modulus, poisson=spec.poisson)
-    solution = solve_contact(
-        x,
-        h,
-        load=float(mass) * STANDARD_GRAVITY,
+    return solve_case(
+        ski_name,
+        mass=float(mass),
         load_position=float(load_position),
-        modulus=modulus,
+        snow_modulus=float(snow_modulus),
         model=spec.model,
-        width=ski.width,
-        initial_pressure=initial_pressure,
+        profile_source=spec.profile_source,
+        n_points=spec.n_points,
+        base=spec.base_modulus,
+        poisson=spec.poisson,
+        start=initial_pressure,
+        profile=profile,
         tol=spec.tol,
         workers=1,  # one FFT thread: parallelism comes from the Dask workers
     )
-    zones = contact_zones(solution, kick_zone=ski.kick_zone)
-    return solution, zones
 
 
 def contact_chunk(
@@ -160,7 +113,7 @@ def contact_chunk(
     for a, mass in enumerate(spec.masses):
         try:
             profile = None if profiles is None else (profiles["x"], profiles["height"][a])
-            solution, zones = solve_point(
+            case = solve_point(
                 spec,
                 ski_name,
                 mass,
@@ -172,6 +125,7 @@ def contact_chunk(
         except UnsupportedLoadError:
             previous = None
             continue
+        solution, zones = case.solution, case.zones
         for q, name in enumerate(spec.zones):
             zone = zones[name]
             out["length_mm"][a, q] = zone.length * _TO_FIELD["length"]

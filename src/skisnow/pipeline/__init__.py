@@ -1,0 +1,36 @@
+"""One case, one pipeline: ski → loaded profile → apparent contact → zones.
+
+:func:`solve_case` is the single door to one case of Kalliorinne et al. (2023), §3: the loaded
+camber profile h = f(x, m, x_m) (eq. 1), the rigid ski pressed into elastic snow with force and
+moment balance (eq. 2–3), the contact zones and the Breitschädel (2012) 50 µm estimate. The
+sweep, ``skisnow contact``, the report, the demo and the examples call it, so the same inputs
+give the same numbers whichever door a user comes in by.
+
+Grid convention: ``n_points`` (default 4096) stations evenly spaced from the tail to the tip of
+the running surface, both ends included (:func:`stations`), each the centre of one contact cell.
+
+>>> case = solve_case("skate", mass=60.0, load_position=-0.12,
+...                   snow_modulus=100e6)                           # doctest: +SKIP
+>>> case.zones["rear"].length, case.breitschaedel["total"].length   # doctest: +SKIP
+"""
+
+from skisnow.pipeline._case import DEFAULT_TOL, MODELS, Case, solve_case
+from skisnow.pipeline._profiles import (
+    DEFAULT_N_POINTS,
+    PROFILE_SOURCES,
+    loaded_profiles,
+    resolve_ski,
+    stations,
+)
+
+__all__ = [
+    "DEFAULT_N_POINTS",
+    "DEFAULT_TOL",
+    "MODELS",
+    "PROFILE_SOURCES",
+    "Case",
+    "loaded_profiles",
+    "resolve_ski",
+    "solve_case",
+    "stations",
+]

@@ -1,0 +1,287 @@
+"""One case end to end: ski → loaded profile → apparent contact → zones (:func:`solve_case`).
+
+The chain of Kalliorinne et al. (2023), §3: the loaded camber profile h = f(x, m, x_m) (eq. 1),
+pressed as a rigid body free to translate and rotate about the load point (force and moment
+balance, eq. 3) into an elastic half-space of equivalent modulus E' (eq. 2), and the contact
+grouped into rear / middle / front zones with the Breitschädel (2012) 50 µm estimate beside
+them. This module is the only place the chain is written; the sweep's chunk function, the
+``skisnow contact`` command, the report, the demo and the examples all call :func:`solve_case`.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from skisnow._errors import DomainWarning, InputError, UnsupportedLoadError
+from skisnow.constants import STANDARD_GRAVITY
+from skisnow.pipeline._profiles import (
+    DEFAULT_N_POINTS,
+    _check_source,
+    loaded_profiles,
+    resolve_ski,
+    stations,
+)
+
+if TYPE_CHECKING:
+    from skisnow.contact import ContactSolution, Material, Zone, ZoneMetrics
+    from skisnow.ski import Ski
+
+#: Contact models of :func:`skisnow.contact.solve_contact` a case may use.
+MODELS: tuple[str, ...] = ("strip", "surface")
+#: Default tolerance of the contact solver (relative pressure change between iterations).
+DEFAULT_TOL: float = 1e-8
+
+
+@dataclass(frozen=True, kw_only=True, eq=False)
+class Case:
+    """One solved case (SI units): its inputs, loaded profile, contact and zones.
+
+    Attributes
+    ----------
+    ski
+        The :class:`~skisnow.ski.Ski`, or ``None`` for a bare profile (:func:`solve_case` with
+        ``ski=None``).
+    label
+        The ski's name, or what the caller named the bare profile.
+    mass, load_position, snow_modulus
+        m [kg], x_m [m] from the balance point (positive toward the tip), E_counter [Pa].
+    model, profile_source, n_points
+        Contact model, where the profile came from (``'network'``, ``'beam'`` or ``'given'``),
+        stations along the ski.
+    modulus, width, kick_zone
+        E' of eq. 2 [Pa], the width of the ski [m], the kick zone that defines the middle zone.
+    x, height
+        The rigid loaded profile (stations [m], camber height h [m]).
+    solution
+        The :class:`~skisnow.contact.ContactSolution`.
+    zones
+        The :class:`~skisnow.contact.ZoneMetrics` (rear / middle / front / total and the
+        Breitschädel estimate, :attr:`breitschaedel`).
+    converged
+        Whether the contact solver reached its tolerance.
+    warnings
+        Texts of what the caller should know: the camber network used outside its trained
+        domain (:class:`~skisnow.DomainWarning`), a solve that did not converge.
+    """
+
+    ski: Ski | None = field(repr=False)
+    label: str
+    mass: float
+    load_position: float
+    snow_modulus: float
+    model: str
+    profile_source: str
+    n_points: int
+    modulus: float
+    width: float
+    kick_zone: tuple[float, float] | None
+    x: NDArray[np.float64] = field(repr=False)
+    height: NDArray[np.float64] = field(repr=False)
+    solution: ContactSolution = field(repr=False)
+    zones: ZoneMetrics = field(repr=False)
+    converged: bool
+    warnings: tuple[str, ...] = ()
+
+    @property
+    def breitschaedel(self) -> dict[str, Zone]:
+        """The Breitschädel (2012) 50 µm contact estimate per zone (lengths and areas)."""
+        return self.zones.breitschaedel
+
+
+def _positive(name: str, value: Any) -> float:
+    v = float(value)
+    if not (math.isfinite(v) and v > 0):
+        raise InputError(f"{name}: need a finite value > 0, got {value!r}")
+    return v
+
+
+def _check_inputs(
+    mass: Any, load_position: Any, snow_modulus: Any, model: str
+) -> tuple[float, float, float]:
+    m = _positive("mass [kg]", mass)
+    e = _positive("snow_modulus [Pa]", snow_modulus)
+    xm = float(load_position)
+    if not math.isfinite(xm):
+        raise InputError(f"load_position [m]: need a finite value, got {load_position!r}")
+    if model not in MODELS:
+        raise InputError(f"model: {model!r} is not one of {MODELS}")
+    return m, xm, e
+
+
+def _given_profile(profile: tuple[ArrayLike, ArrayLike], label: str, mass: float):
+    x = np.asarray(profile[0], dtype=float)
+    h = np.asarray(profile[1], dtype=float)
+    if x.ndim != 1 or h.shape != x.shape or x.size < 16:
+        raise InputError(
+            f"profile: need (x, h) as two 1-D arrays of the same length >= 16, got shapes "
+            f"{x.shape} and {h.shape}"
+        )
+    if not np.all(np.isfinite(h)):
+        # the sweep's batched beam profiles mark a load the ski cannot carry by a NaN row
+        raise UnsupportedLoadError(f"no loaded profile of {label} at m = {mass:g} kg")
+    return x, h
+
+
+def solve_case(
+    ski: Ski | str | None,
+    *,
+    mass: float,
+    load_position: float,
+    snow_modulus: float,
+    model: str = "strip",
+    profile_source: str = "network",
+    n_points: int = DEFAULT_N_POINTS,
+    base: Material | float | None = None,
+    poisson: float = 0.3,
+    start: ArrayLike | None = None,
+    profile: tuple[ArrayLike, ArrayLike] | None = None,
+    width: float | None = None,
+    label: str | None = None,
+    n_across: int = 16,
+    tol: float = DEFAULT_TOL,
+    workers: int | None = None,
+) -> Case:
+    """Solve one case end to end: ski → loaded profile → contact → zones.
+
+    The loaded camber profile h = f(x, m, x_m) (Kalliorinne et al. 2023, eq. 1; the shipped
+    network or the beam) on the stations of the grid convention of
+    :mod:`skisnow.pipeline` (``n_points`` stations from tail to tip, ends included), pressed
+    as a rigid body with force and moment balance about x_m (eq. 3) into elastic snow of
+    equivalent modulus E' (eq. 2), then grouped into zones with the Breitschädel (2012) 50 µm
+    estimate (:func:`skisnow.contact.contact_zones`).
+
+    Parameters
+    ----------
+    ski
+        A :class:`~skisnow.ski.Ski` or a name :func:`skisnow.ski.get_ski` accepts; its width
+        and kick zone are used. ``None``: a bare ``profile`` of a ski of ``width`` (no kick
+        zone).
+    mass
+        Load m [kg] (W = m·g₀).
+    load_position
+        x_m [m] from the balance point, positive toward the tip.
+    snow_modulus
+        E_counter of the snow [Pa] (Poisson ratio ``poisson``).
+    model
+        ``'strip'`` (1-D, fast) or ``'surface'`` (2-D grid of ``n_across`` cells across).
+    profile_source
+        ``'network'`` (the shipped camber network) or ``'beam'`` (the virtual ski's beam).
+    n_points
+        Stations along the ski.
+    base
+        The ski base: a :class:`~skisnow.contact.Material` or a modulus [Pa] (Poisson ratio
+        ``poisson``); default :data:`skisnow.contact.BASE` (UHMWPE, 900 MPa, ν = 0.3).
+    poisson
+        ν of the snow (and of a base given as a number).
+    start
+        A pressure field [Pa] to start the contact iteration from (warm start, e.g. the
+        solution of a slightly lighter load); it changes the iterations, not the answer.
+    profile
+        A precomputed loaded profile ``(x, h)`` [m] (the sweep's batched network profiles, a
+        measured profile); replaces computing it. A NaN height means the ski cannot carry the
+        load (:class:`~skisnow.UnsupportedLoadError`).
+    width
+        Ski width [m], only with ``ski=None`` (a known ski has its own width).
+    label
+        Name of a bare profile (default ``'profile'``).
+    n_across, tol, workers
+        Passed to :func:`skisnow.contact.solve_contact` (cells across the width for 'surface',
+        tolerance, FFT threads).
+
+    Returns
+    -------
+    Case
+        Inputs, profile, contact solution, zones, converged flag and warnings.
+
+    Raises
+    ------
+    InputError
+        Invalid input (the message names the argument).
+    UnsupportedLoadError
+        The profile cannot carry the load (e.g. the contact would reach an end of the ski).
+    """
+    from skisnow.contact import BASE, contact_zones, effective_modulus, solve_contact
+
+    m, xm, e = _check_inputs(mass, load_position, snow_modulus, model)
+    notes: list[str] = []
+    if ski is None:
+        if profile is None or width is None:
+            raise InputError("solve_case(ski=None) needs a profile=(x, h) and a width [m]")
+        s, name = None, label or "profile"
+        ski_width = _positive("width [m]", width)
+        kick_zone, source = None, "given"
+        x, h = _given_profile(profile, name, m)
+    else:
+        s = resolve_ski(ski)
+        name = s.name
+        if width is not None:
+            raise InputError(
+                f"width: the ski {s.name!r} has its own width ({s.width * 1e3:g} mm); give "
+                "width only with ski=None and a bare profile"
+            )
+        ski_width, kick_zone = s.width, s.kick_zone
+        _check_source(profile_source)
+        source = profile_source
+        if profile is not None:
+            x, h = _given_profile(profile, name, m)
+        else:
+            x = stations(s, n_points)
+            with warnings.catch_warnings(record=True) as caught:
+                warnings.simplefilter("always", DomainWarning)
+                _, heights = loaded_profiles(
+                    s, (m,), xm, profile_source=source, n_points=n_points, missing="raise"
+                )
+            for w in caught:
+                if issubclass(w.category, DomainWarning):
+                    notes.append(str(w.message))
+                else:
+                    warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+            h = heights[0]
+    # The rigid ski on elastic snow (eq. 2-3). A flexible ski (beam and half-space solved
+    # together) would replace this step and the profile above by one coupled solve.
+    counter_base = BASE if base is None else base
+    modulus = effective_modulus(e, counter_base, poisson=poisson)
+    solution = solve_contact(
+        x,
+        h,
+        load=m * STANDARD_GRAVITY,
+        load_position=xm,
+        modulus=modulus,
+        model=model,  # type: ignore[arg-type]
+        width=ski_width,
+        n_across=n_across,
+        initial_pressure=start,
+        tol=tol,
+        workers=workers,
+    )
+    zones = contact_zones(solution, kick_zone=kick_zone)
+    if not solution.converged:
+        notes.append(
+            f"contact solver did not converge in {solution.iterations} iterations "
+            f"(residual {solution.residual:.3g}): {solution.message}"
+        )
+    return Case(
+        ski=s,
+        label=name,
+        mass=m,
+        load_position=xm,
+        snow_modulus=e,
+        model=model,
+        profile_source=source,
+        n_points=int(x.size),
+        modulus=float(modulus),
+        width=float(ski_width),
+        kick_zone=kick_zone,
+        x=x,
+        height=h,
+        solution=solution,
+        zones=zones,
+        converged=bool(solution.converged),
+        warnings=tuple(notes),
+    )
