@@ -1,0 +1,88 @@
+"""The ``explore`` command: one self-contained interactive HTML page over load and snow."""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from skisnow.cli._app import app
+from skisnow.cli._render import emit_json, err_console
+
+
+@app.command()
+def explore(
+    ski: Annotated[list[str], typer.Argument(help="Ski names (one or more).")],
+    out: Annotated[Path, typer.Option("--out", help="The HTML page to write.")] = Path(
+        "explore.html"
+    ),
+    mass_kg: Annotated[
+        str, typer.Option("--mass-kg", help="Masses (kg): start:stop:step, a value or a list.")
+    ] = "5:130:5",
+    load_position_mm: Annotated[
+        str, typer.Option("--load-position-mm", help="Load positions x_m (mm), + toward tip.")
+    ] = "-240:-40:40",
+    snow_modulus_mpa: Annotated[
+        str, typer.Option("--snow-modulus-mpa", help="Snow moduli E_counter (MPa).")
+    ] = "40:400:40",
+    stations: Annotated[
+        int, typer.Option("--stations", help="Display stations along the ski (divides 4096).")
+    ] = 512,
+    profile_source: Annotated[
+        str, typer.Option("--profile-source", help="Loaded profile: network or beam.")
+    ] = "network",
+    json_out: Annotated[bool, typer.Option("--json", help="Print one JSON document.")] = False,
+) -> None:
+    """Write an interactive explorer page: sliders for mass, load position and snow modulus.
+
+    The page opens from disk in any browser, with no server and no network; it holds the contact
+    of every grid point (zones, pressures, the ski base and the deformed snow).
+    """
+    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn
+
+    from skisnow import __version__
+    from skisnow.explore import ExplorerGrid, explorer_dataset, render_explorer
+    from skisnow.sweep import parse_values
+
+    grid = ExplorerGrid(
+        masses=tuple(parse_values(mass_kg, name="--mass-kg")),
+        load_positions=tuple(1e-3 * parse_values(load_position_mm, name="--load-position-mm")),
+        snow_moduli=tuple(1e6 * parse_values(snow_modulus_mpa, name="--snow-modulus-mpa")),
+        n_display=stations,
+    )
+    start = time.perf_counter()
+    with Progress(
+        TextColumn("explorer"), BarColumn(), MofNCompleteColumn(), console=err_console
+    ) as bar:
+        task = bar.add_task("solve", total=None)
+        ds = explorer_dataset(
+            ski,
+            grid,
+            profile_source=profile_source,
+            progress=lambda done, total: bar.update(task, completed=done, total=total),
+        )
+    ds.attrs["skisnow_version"] = __version__
+    page = render_explorer(
+        ds, title="skisnow explorer", subtitle=f"{', '.join(ski)} · skisnow {__version__}"
+    )
+    out.parent.mkdir(parents=True, exist_ok=True)
+    tmp = out.with_name(f".{out.name}.tmp")
+    tmp.write_text(page, encoding="utf-8")
+    tmp.replace(out)
+    seconds = time.perf_counter() - start
+    size_mb = out.stat().st_size / 1e6
+    if json_out:
+        emit_json(
+            {
+                "path": str(out),
+                "size_mb": size_mb,
+                "seconds": seconds,
+                "points": int(ds.converged.size),
+            }
+        )
+    else:
+        err_console.print(
+            f"wrote {out} ({size_mb:.2f} MB, {ds.converged.size} points, {seconds:.1f} s)"
+        )

@@ -1,0 +1,80 @@
+"""Rendering the explorer: one self-contained HTML file (inline script, inline data, no server,
+no network). The browser code is a small hand-written script (``explorer.js``, canvas drawing):
+a plotting library's bundle would be larger than the data of the default grid."""
+
+from __future__ import annotations
+
+import base64
+import html
+import json
+from importlib import resources
+from typing import Any
+
+import numpy as np
+
+from skisnow.explore._pack import pack
+
+CURVES = ("pressure_kpa", "bottom_um", "snow_um")
+ARRAYS = (
+    "zone_code",
+    "length_mm",
+    "area_cm2",
+    "mean_pressure_kpa",
+    "max_pressure_kpa",
+    "load_share",
+    "patches",
+    "converged",
+    "x_mm",
+)
+
+
+def _nearest(values: list[float], target: float) -> int:
+    return int(np.argmin(np.abs(np.asarray(values, dtype=float) - target)))
+
+
+def render_explorer(ds: Any, *, title: str = "skisnow explorer", subtitle: str = "") -> str:
+    """The explorer page of dataset ``ds`` (from :func:`skisnow.explore.explorer_dataset`).
+
+    The page opens at the point nearest to 60 kg, 120 mm behind the balance point and 100 MPa
+    (the paper's Figure 5–6 cases).
+    """
+    curves = {k: np.asarray(ds[k].values, dtype=float) for k in CURVES}
+    arrays = {k: np.asarray(ds[k].values) for k in ARRAYS}
+    if "kick_load_share" in ds:
+        arrays["kick_load_share"] = np.asarray(ds["kick_load_share"].values)
+    manifest, blob = pack(curves, arrays)
+    grid = {
+        "ski": [str(s) for s in ds["ski"].values],
+        "model": [str(s) for s in ds["model"].values],
+        "mass_kg": [float(v) for v in ds["mass_kg"].values],
+        "load_position_mm": [float(v) for v in ds["load_position_mm"].values],
+        "snow_modulus_mpa": [float(v) for v in ds["snow_modulus_mpa"].values],
+    }
+    meta = {
+        "grid": grid,
+        "arrays": manifest,
+        "n_stations": int(ds.sizes["station"]),
+        "skisnow_version": ds.attrs.get("skisnow_version", ""),
+    }
+    note = (
+        "Lengths, areas and pressures of the half-space contact (Kalliorinne et al. 2023, "
+        "eq. 2–3) at the grid point shown; curves are block means on "
+        f"{meta['n_stations']} stations, peak pressures come from the full-resolution solve."
+    )
+    page = resources.files("skisnow.explore").joinpath("explorer.html").read_text("utf-8")
+    script = resources.files("skisnow.explore").joinpath("explorer.js").read_text("utf-8")
+    replacements = {
+        "__TITLE__": html.escape(title),
+        "__SUBTITLE__": html.escape(subtitle),
+        "__NOTE__": html.escape(note),
+        "__MASS0__": str(_nearest(grid["mass_kg"], 60.0)),
+        "__POS0__": str(_nearest(grid["load_position_mm"], -120.0)),
+        "__MOD0__": str(_nearest(grid["snow_modulus_mpa"], 100.0)),
+        # "</" never appears in JSON numbers/names we write, but escape it anyway for <script>
+        "__META__": json.dumps(meta, separators=(",", ":")).replace("</", "<\\/"),
+        "__BLOB__": base64.b64encode(blob).decode("ascii"),
+        "__SCRIPT__": script,
+    }
+    for key, value in replacements.items():
+        page = page.replace(key, value)
+    return page

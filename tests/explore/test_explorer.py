@@ -1,0 +1,190 @@
+"""The explorer: its packing is lossless to the stated quantisation, its data are the solver's
+(force balance on the display grid, identical metrics), and the page works in a real browser.
+
+The browser test drives Debian's ``chromium`` through ``chromedriver`` with Selenium (never a
+downloaded browser or driver): it moves the mass and snow sliders with the keyboard, as a user
+would, and checks that the zone lengths shown are the precomputed ones for that grid point and
+that the console stays clean. It skips, saying why, where Chromium or its driver is absent.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from hypothesis.extra.numpy import arrays
+
+from skisnow.constants import STANDARD_GRAVITY
+from skisnow.explore import (
+    ExplorerGrid,
+    block_mean,
+    explorer_dataset,
+    pack,
+    quantise_curves,
+    render_explorer,
+    unpack,
+)
+from skisnow.explore._pack import QMAX
+
+GRID = ExplorerGrid(
+    masses=(30.0, 60.0, 90.0),
+    load_positions=(-0.12, -0.04),
+    snow_moduli=(50e6, 200e6),
+    n_points=1024,
+    n_display=128,
+)
+
+
+@settings(max_examples=60, deadline=None)
+@given(
+    arrays(
+        np.float64,
+        st.tuples(st.integers(1, 4), st.integers(2, 40)),
+        elements=st.floats(-1e4, 1e4).filter(lambda f: f == 0 or abs(f) > 1e-30),
+    )
+)
+def test_pack_round_trip_within_half_a_step(values: np.ndarray) -> None:
+    manifest, blob = pack({"c": values}, {"m": values.astype(np.float32)})
+    out = unpack(manifest, blob)
+    _, scale = quantise_curves(values)
+    assert np.all(np.abs(out["c"] - values) <= 0.5 * scale[..., None].astype(float) * (1 + 1e-6))
+    np.testing.assert_array_equal(out["m"], values.astype(np.float32))
+    assert all(a["offset"] % 8 == 0 for a in manifest.values())
+
+
+def test_quantisation_keeps_deltas_in_int16() -> None:
+    # the worst case: a curve jumping between its two extremes
+    v = np.tile([1.0, -1.0], 50)[None, :] * 3.7
+    levels, _ = quantise_curves(v)
+    assert np.abs(levels).max() == QMAX
+    assert np.abs(np.diff(levels)).max() <= np.iinfo(np.int16).max
+    manifest, blob = pack({"c": v}, {})
+    np.testing.assert_allclose(unpack(manifest, blob)["c"], v, atol=3.7 / QMAX)
+
+
+def test_block_mean_conserves_the_integral() -> None:
+    rng = np.random.default_rng(0)
+    p = rng.random((3, 1024))
+    np.testing.assert_allclose(block_mean(p, 128).sum(-1) * 8, p.sum(-1), rtol=1e-13)
+
+
+@pytest.fixture(scope="module")
+def dataset():
+    return explorer_dataset(["classic"], GRID)
+
+
+def test_display_pressure_carries_the_load(dataset) -> None:
+    """Force balance on the display grid: Σ p̄ · Δx̄ · w = m·g at every converged point."""
+    from skisnow.ski import get_ski
+
+    width = get_ski("classic").width
+    x = dataset["x_mm"].values[0] * 1e-3
+    dx = x[1] - x[0]
+    p = dataset["pressure_kpa"].values[0, 0] * 1e3  # (mass, pos, mod, station)
+    force = p.sum(-1) * dx * width
+    expected = np.asarray(GRID.masses)[:, None, None] * STANDARD_GRAVITY
+    ok = dataset["converged"].values[0, 0]
+    assert ok.all()
+    np.testing.assert_allclose(force[ok], np.broadcast_to(expected, force.shape)[ok], rtol=1e-6)
+    # in contact the ski base lies on the snow surface: b = −u where p > 0 (to the quantisation)
+    b, s = dataset["bottom_um"].values[0, 0], dataset["snow_um"].values[0, 0]
+    inside = dataset["zone_code"].values[0, 0] > 0
+    assert np.all(b[inside] - s[inside] > -1.0)  # µm: no interpenetration on the display grid
+
+
+def test_metrics_are_the_solvers(dataset) -> None:
+    from skisnow.sweep import SweepSpec, solve_point
+
+    spec = SweepSpec(skis=("classic",), masses=(60.0,), load_positions=(-0.04,),
+                     snow_moduli=(200e6,), n_points=GRID.n_points)  # fmt: skip
+    _, zones = solve_point(spec, "classic", 60.0, -0.04, 200e6)
+    point = dataset.sel(ski="classic", model="rigid", mass_kg=60.0, load_position_mm=-40.0,
+                        snow_modulus_mpa=200.0)  # fmt: skip
+    for z in ("rear", "middle", "front", "total"):
+        assert point["length_mm"].sel(zone=z).item() == pytest.approx(zones[z].length * 1e3)
+        assert point["patches"].sel(zone=z).item() == zones[z].patches
+        if zones[z].area > 0:
+            assert point["mean_pressure_kpa"].sel(zone=z).item() == pytest.approx(
+                zones[z].mean_pressure * 1e-3, rel=1e-6
+            )
+
+
+def test_page_is_self_contained(dataset) -> None:
+    page = render_explorer(dataset, title="t")
+    assert "http://" not in page.replace("http://www.w3.org", "")
+    assert "https://" not in page and "<link" not in page and " src=" not in page
+    assert "__" not in page.split('id="skisnow-blob"')[0].split("<script")[0]  # all filled in
+
+
+def _driver():
+    chromium = shutil.which("chromium") or shutil.which("chromium-browser")
+    chromedriver = shutil.which("chromedriver")
+    if not (chromium and chromedriver):
+        pytest.skip(
+            "Debian's chromium and chromium-driver are not installed (.ci/run installs them)"
+        )
+    webdriver = pytest.importorskip("selenium.webdriver")
+    from selenium.webdriver.chrome.service import Service
+
+    opts = webdriver.ChromeOptions()
+    opts.binary_location = chromium
+    for arg in ("--headless=new", "--no-sandbox", "--disable-gpu", "--disable-quic",
+                "--no-first-run", "--disable-background-networking", "--disable-sync",
+                "--disable-component-update", "--window-size=420,900"):  # fmt: skip
+        opts.add_argument(arg)  # a phone-sized window
+    opts.set_capability("goog:loggingPrefs", {"browser": "ALL"})
+    return webdriver.Chrome(service=Service(chromedriver), options=opts)
+
+
+@pytest.mark.slow
+def test_page_in_a_real_browser(dataset, tmp_path: Path) -> None:
+    from selenium.webdriver.common.keys import Keys
+
+    page = tmp_path / "explore.html"
+    page.write_text(render_explorer(dataset, title="skisnow explorer"), encoding="utf-8")
+    driver = _driver()
+    try:
+        driver.get(page.as_uri())
+        for _ in range(100):
+            if driver.execute_script("return document.body.dataset.ready") == "1":
+                break
+            time.sleep(0.1)
+        else:
+            pytest.fail("the page did not finish decoding its data")
+
+        def shown():
+            rows = driver.find_elements("css selector", "#zones tr")
+            return {r.get_attribute("data-zone"): r.find_element("css selector", ".length").text
+                    for r in rows}  # fmt: skip
+
+        def expect(mass: float, pos: float, mod: float) -> dict[str, str]:
+            pt = dataset.sel(ski="classic", model="rigid", mass_kg=mass, load_position_mm=pos,
+                             snow_modulus_mpa=mod)  # fmt: skip
+            return {z: f"{pt['length_mm'].sel(zone=z).item():.1f}"
+                    for z in ("rear", "middle", "front", "total")}  # fmt: skip
+
+        # the page opens nearest to 60 kg, −120 mm, 100 MPa
+        assert shown() == expect(60.0, -120.0, 50.0)
+        mass = driver.find_element("id", "mass")
+        mass.send_keys(Keys.RIGHT)  # 60 → 90 kg
+        mod = driver.find_element("id", "mod")
+        mod.send_keys(Keys.RIGHT)  # 50 → 200 MPa
+        assert driver.find_element("id", "mass-value").text == "90 kg"
+        assert driver.find_element("id", "mod-value").text == "200 MPa"
+        assert shown() == expect(90.0, -120.0, 200.0)
+        driver.find_element("id", "pos").send_keys(Keys.RIGHT)
+        mass.send_keys(Keys.HOME)
+        assert shown() == expect(30.0, -40.0, 200.0)
+        shot = Path(os.environ.get("SKISNOW_SCREENSHOT", tmp_path / "explore.png"))
+        driver.save_screenshot(str(shot))
+        assert shot.stat().st_size > 10_000
+        errors = [e for e in driver.get_log("browser") if e["level"] in ("SEVERE", "WARNING")]
+        assert errors == []
+    finally:
+        driver.quit()
