@@ -43,6 +43,7 @@ def explore(
     from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn
 
     from skisnow import __version__
+    from skisnow._atomic import atomic_write
     from skisnow.explore import ExplorerGrid, explorer_dataset, render_explorer
     from skisnow.sweep import parse_values
 
@@ -67,10 +68,7 @@ def explore(
     page = render_explorer(
         ds, title="skisnow explorer", subtitle=f"{', '.join(ski)} · skisnow {__version__}"
     )
-    out.parent.mkdir(parents=True, exist_ok=True)
-    tmp = out.with_name(f".{out.name}.tmp")
-    tmp.write_text(page, encoding="utf-8")
-    tmp.replace(out)
+    atomic_write(out, page)
     seconds = time.perf_counter() - start
     size_mb = out.stat().st_size / 1e6
     if json_out:
