@@ -81,6 +81,30 @@ def zone_codes(x: np.ndarray, zones, n_blocks: int) -> np.ndarray:
     return code.reshape(n_blocks, -1).max(axis=-1)
 
 
+def _loaded_profiles(camber_profile, ski_name, masses, xm, x, source) -> np.ndarray:
+    """Loaded profiles of all masses at one x_m (n_mass, n_points) [m]; NaN rows where the beam
+    cannot carry the load. The network evaluates all masses in one batched call."""
+    from skisnow._errors import UnsupportedLoadError
+
+    m = np.asarray(masses, dtype=float)
+    if source == "network":
+        _, h = camber_profile(ski_name, mass=m, load_position=xm, x=x, source="network")
+        return np.asarray(h, dtype=float).reshape(m.size, x.size)
+    rows = []
+    for mass in m:
+        try:
+            rows.append(
+                np.asarray(
+                    camber_profile(
+                        ski_name, mass=float(mass), load_position=xm, x=x, source=source
+                    )[1]
+                )
+            )
+        except UnsupportedLoadError:
+            rows.append(np.full(x.size, np.nan))
+    return np.vstack(rows)
+
+
 def explorer_dataset(
     skis: Sequence[str],
     grid: ExplorerGrid | None = None,
@@ -100,9 +124,8 @@ def explorer_dataset(
     import xarray as xr
 
     from skisnow._errors import UnsupportedLoadError
-    from skisnow.ski import get_ski
+    from skisnow.ski import camber_profile, get_ski
     from skisnow.sweep import SweepSpec, solve_point
-    from skisnow.sweep._point import loaded_profiles  # TODO(public seam)
 
     grid = grid or ExplorerGrid()
     spec = SweepSpec(
@@ -129,10 +152,10 @@ def explorer_dataset(
     x_mm = np.zeros((n_s, nd))
     total, done = n_s * n_p * n_e, 0
     for s, ski_name in enumerate(spec.skis):
-        get_ski(ski_name)
+        ski = get_ski(ski_name)
+        x = np.linspace(ski.x_tail, ski.x_tip, grid.n_points)
         for p, xm in enumerate(grid.load_positions):
-            profiles = loaded_profiles(spec, ski_name, xm)
-            x = profiles["x"]
+            heights = _loaded_profiles(camber_profile, ski_name, grid.masses, xm, x, profile_source)
             x_mm[s] = block_mean(x, nd) * 1e3
             for e, modulus in enumerate(grid.snow_moduli):
                 previous = None
@@ -145,7 +168,7 @@ def explorer_dataset(
                             xm,
                             modulus,
                             initial_pressure=previous,
-                            profile=(x, profiles["height"][a]),
+                            profile=(x, heights[a]),
                         )
                     except UnsupportedLoadError:
                         previous = None
