@@ -99,14 +99,13 @@ def test_display_pressure_carries_the_load(dataset) -> None:
 
 
 def test_metrics_are_the_solvers(dataset) -> None:
-    from skisnow.sweep import SweepSpec, solve_point
+    from skisnow.pipeline import solve_case
 
-    spec = SweepSpec(skis=("classic",), masses=(60.0,), load_positions=(-0.04,),
-                     snow_moduli=(200e6,), n_points=GRID.n_points)  # fmt: skip
-    _, zones = solve_point(spec, "classic", 60.0, -0.04, 200e6)
+    zones = solve_case("classic", mass=60.0, load_position=-0.04, snow_modulus=200e6,
+                       n_points=GRID.n_points).zones  # fmt: skip
     point = dataset.sel(ski="classic", model="rigid", mass_kg=60.0, load_position_mm=-40.0,
                         snow_modulus_mpa=200.0)  # fmt: skip
-    for z in ("rear", "middle", "front", "total"):
+    for z in ("rear", "middle", "front", "total", "kick"):
         assert point["length_mm"].sel(zone=z).item() == pytest.approx(zones[z].length * 1e3)
         assert point["patches"].sel(zone=z).item() == zones[z].patches
         if zones[z].area > 0:
@@ -167,7 +166,7 @@ def test_page_in_a_real_browser(dataset, tmp_path: Path) -> None:
             pt = dataset.sel(ski="classic", model="rigid", mass_kg=mass, load_position_mm=pos,
                              snow_modulus_mpa=mod)  # fmt: skip
             return {z: f"{pt['length_mm'].sel(zone=z).item():.1f}"
-                    for z in ("rear", "middle", "front", "total")}  # fmt: skip
+                    for z in ("rear", "middle", "front", "total", "kick")}  # fmt: skip
 
         # the page opens nearest to 60 kg, −120 mm, 100 MPa
         assert shown() == expect(60.0, -120.0, 50.0)

@@ -17,7 +17,9 @@ import numpy as np
 
 from skisnow._errors import InputError
 
-ZONES = ("rear", "middle", "front", "total")
+#: Zones of :class:`skisnow.contact.ZoneMetrics` on the page; ``kick`` is the contact between the
+#: kick-zone marks, whatever patch it belongs to (where the grip wax touches the snow).
+ZONES = ("rear", "middle", "front", "total", "kick")
 METRICS = ("length_mm", "area_cm2", "mean_pressure_kpa", "max_pressure_kpa", "load_share")
 #: Field units: SI value × factor.
 _TO_FIELD = {
@@ -81,30 +83,6 @@ def zone_codes(x: np.ndarray, zones, n_blocks: int) -> np.ndarray:
     return code.reshape(n_blocks, -1).max(axis=-1)
 
 
-def _loaded_profiles(camber_profile, ski_name, masses, xm, x, source) -> np.ndarray:
-    """Loaded profiles of all masses at one x_m (n_mass, n_points) [m]; NaN rows where the beam
-    cannot carry the load. The network evaluates all masses in one batched call."""
-    from skisnow._errors import UnsupportedLoadError
-
-    m = np.asarray(masses, dtype=float)
-    if source == "network":
-        _, h = camber_profile(ski_name, mass=m, load_position=xm, x=x, source="network")
-        return np.asarray(h, dtype=float).reshape(m.size, x.size)
-    rows = []
-    for mass in m:
-        try:
-            rows.append(
-                np.asarray(
-                    camber_profile(
-                        ski_name, mass=float(mass), load_position=xm, x=x, source=source
-                    )[1]
-                )
-            )
-        except UnsupportedLoadError:
-            rows.append(np.full(x.size, np.nan))
-    return np.vstack(rows)
-
-
 def explorer_dataset(
     skis: Sequence[str],
     grid: ExplorerGrid | None = None,
@@ -124,20 +102,15 @@ def explorer_dataset(
     import xarray as xr
 
     from skisnow._errors import UnsupportedLoadError
-    from skisnow.ski import camber_profile, get_ski
-    from skisnow.sweep import SweepSpec, solve_point
+    from skisnow.pipeline import loaded_profiles, resolve_ski, solve_case
 
     grid = grid or ExplorerGrid()
-    spec = SweepSpec(
-        skis=tuple(skis),
-        masses=grid.masses,
-        load_positions=grid.load_positions,
-        snow_moduli=(grid.snow_moduli[0],),
-        profile_source=profile_source,
-        n_points=grid.n_points,
-    )
+    names = tuple(skis)
+    if not names or len(set(names)) != len(names):
+        raise InputError(f"skis: need distinct skis, got {list(names)}")
+    resolved = [resolve_ski(s) for s in names]  # an unknown ski fails here, before any solve
     n_s, n_m, n_p, n_e = (
-        len(spec.skis),
+        len(names),
         len(grid.masses),
         len(grid.load_positions),
         len(grid.snow_moduli),
@@ -151,29 +124,31 @@ def explorer_dataset(
     converged = np.zeros(shape, dtype=bool)
     x_mm = np.zeros((n_s, nd))
     total, done = n_s * n_p * n_e, 0
-    for s, ski_name in enumerate(spec.skis):
-        ski = get_ski(ski_name)
-        x = np.linspace(ski.x_tail, ski.x_tip, grid.n_points)
+    for s, ski in enumerate(resolved):
         for p, xm in enumerate(grid.load_positions):
-            heights = _loaded_profiles(camber_profile, ski_name, grid.masses, xm, x, profile_source)
+            x, heights = loaded_profiles(
+                ski, grid.masses, xm, profile_source=profile_source, n_points=grid.n_points
+            )
             x_mm[s] = block_mean(x, nd) * 1e3
             for e, modulus in enumerate(grid.snow_moduli):
                 previous = None
                 for a, mass in enumerate(grid.masses):
                     try:
-                        sol, zones = solve_point(
-                            spec,
-                            ski_name,
-                            mass,
-                            xm,
-                            modulus,
-                            initial_pressure=previous,
+                        case = solve_case(
+                            ski,
+                            mass=mass,
+                            load_position=xm,
+                            snow_modulus=modulus,
                             profile=(x, heights[a]),
+                            start=previous,
+                            n_points=grid.n_points,
+                            workers=1,
                         )
                     except UnsupportedLoadError:
                         previous = None
                         continue
                     i = (s, 0, a, p, e)
+                    sol, zones = case.solution, case.zones
                     base = sol.height - sol.translation - sol.rotation * (sol.x - xm)
                     fields["pressure_kpa"][i] = block_mean(sol.pressure, nd) * 1e-3
                     fields["bottom_um"][i] = block_mean(base, nd) * 1e6
@@ -197,7 +172,7 @@ def explorer_dataset(
     data["converged"] = (point, converged)
     data["x_mm"] = (("ski", "station"), x_mm)
     coords = {
-        "ski": list(spec.skis),
+        "ski": [getattr(k, "name", str(k)) for k in resolved],
         "model": ["rigid"],
         "mass_kg": list(grid.masses),
         "load_position_mm": [round(v * 1e3, 6) for v in grid.load_positions],

@@ -40,8 +40,6 @@ def render_explorer(ds: Any, *, title: str = "skisnow explorer", subtitle: str =
     """
     curves = {k: np.asarray(ds[k].values, dtype=float) for k in CURVES}
     arrays = {k: np.asarray(ds[k].values) for k in ARRAYS}
-    if "kick_load_share" in ds:
-        arrays["kick_load_share"] = np.asarray(ds["kick_load_share"].values)
     manifest, blob = pack(curves, arrays)
     grid = {
         "ski": [str(s) for s in ds["ski"].values],

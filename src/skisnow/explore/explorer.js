@@ -6,7 +6,8 @@
 (function () {
   const META = JSON.parse(document.getElementById("skisnow-meta").textContent);
   const ZONE_COLORS = ["#d95f02", "#1b9e77", "#7570b3"]; // rear, middle, front
-  const ZONE_NAMES = ["rear", "middle", "front", "total"];
+  const ZONE_NAMES = ["rear", "middle", "front", "total", "kick"];
+  const ZONE_LABELS = { kick: "between the kick-zone marks" };
   const state = { ski: 0, model: 0, mass: 0, pos: 0, mod: 0 };
   let DATA = null;
 
@@ -165,17 +166,17 @@
   function table(p) {
     const rows = ZONE_NAMES.map((z, q) => {
       const cell = (n, d) => { const v = metric(n, p, q); return isFinite(v) ? v.toFixed(d) : "–"; };
-      return `<tr data-zone="${z}"><td>${z}</td><td class="length">${cell("length_mm", 1)}</td>` +
+      return `<tr data-zone="${z}"><td>${ZONE_LABELS[z] || z}</td><td class="length">${cell("length_mm", 1)}</td>` +
         `<td>${cell("area_cm2", 1)}</td><td>${cell("mean_pressure_kpa", 1)}</td>` +
         `<td>${cell("max_pressure_kpa", 1)}</td><td>${(100 * metric("load_share", p, q)).toFixed(1)}</td>` +
         `<td>${metric("patches", p, q)}</td></tr>`;
     });
     document.getElementById("zones").innerHTML = rows.join("");
     const conv = DATA.converged.v[p];
-    const kick = DATA.kick_load_share ? DATA.kick_load_share.v[p] : NaN;
+    const kick = metric("length_mm", p, 4);
     document.getElementById("status").textContent =
       (conv ? "converged" : "NOT converged / load not carried") +
-      (isFinite(kick) ? ` · load carried between the kick-zone marks: ${(100 * kick).toFixed(1)} %` : "");
+      (kick > 0 ? ` · the kick zone touches the snow over ${kick.toFixed(1)} mm` : "");
   }
 
   function labels() {
