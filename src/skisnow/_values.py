@@ -1,16 +1,18 @@
-"""Grids of values as users type them at the edge (CLI options): ``start:stop:step``, a list, one
-value. One parser for every command (``bench``, ``sweep``, ``report``, ``bearing``); units are
-left as typed — the caller converts to SI."""
+"""Grids of values: as users type them at the edge (CLI options: ``start:stop:step``, a list, one
+value; one parser for every command, units left as typed — the caller converts to SI), and the
+one check that a grid is a non-empty set of distinct finite values, sorted (:func:`sorted_unique`),
+used by the bench, the sweep and the CLI."""
 
 from __future__ import annotations
 
 import math
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from skisnow._errors import InputError
 
-__all__ = ["parse_values"]
+__all__ = ["parse_values", "sorted_unique"]
 
 
 def parse_values(text: str, *, name: str = "values") -> np.ndarray:
@@ -46,3 +48,48 @@ def parse_values(text: str, *, name: str = "values") -> np.ndarray:
     if values.size == 0 or not np.all(np.isfinite(values)):
         raise InputError(f"{name}: {text!r} holds no finite values")
     return values
+
+
+def sorted_unique(
+    values: ArrayLike, *, name: str, unit: str = "", positive: bool = False
+) -> NDArray[np.float64]:
+    """A grid axis checked once: a non-empty 1-D set of distinct finite values, sorted ascending.
+
+    Parameters
+    ----------
+    values : array_like
+        One value or a 1-D sequence.
+    name : str
+        The argument or option named in messages (``masses``, ``--grain-um``).
+    unit : str
+        The unit of ``values`` shown in messages (``kg``, ``m``, ``Pa``).
+    positive : bool
+        Also require every value > 0.
+
+    Returns
+    -------
+    ndarray of float64
+        The values sorted ascending.
+
+    Raises
+    ------
+    InputError
+        Empty, not 1-D, NaN/inf, a value <= 0 with ``positive``, or a value given twice (a grid
+        that names a point twice is a typo more often than an intent).
+    """
+    where = f"{name} [{unit}]" if unit else name
+    try:
+        arr = np.atleast_1d(np.asarray(values, dtype=float))
+    except (TypeError, ValueError):
+        raise InputError(f"{where}: need numbers, got {values!r}") from None
+    if arr.ndim != 1 or arr.size == 0:
+        raise InputError(f"{where}: need a non-empty 1-D list of values, got shape {arr.shape}")
+    if not np.all(np.isfinite(arr)):
+        raise InputError(f"{where}: all values must be finite, got {arr.tolist()}")
+    if positive and np.any(arr <= 0):
+        raise InputError(f"{where}: all values must be > 0, got min {arr.min()}")
+    uniq = np.unique(arr)
+    if uniq.size != arr.size:
+        twice = sorted({float(v) for v in arr if np.count_nonzero(arr == v) > 1})
+        raise InputError(f"{where}: values must be distinct; given more than once: {twice}")
+    return uniq

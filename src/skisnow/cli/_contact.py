@@ -12,6 +12,7 @@ from skisnow._errors import InputError
 from skisnow.cli._app import app
 from skisnow.cli._render import console, emit_json, print_table
 from skisnow.constants import STANDARD_GRAVITY
+from skisnow.materials import BASE
 
 __all__ = ["zone_record"]
 
@@ -69,7 +70,7 @@ def contact(
     ] = "network",
     base_modulus_mpa: Annotated[
         float, typer.Option("--base-modulus-mpa", help="Ski base modulus in MPa (eq. 2).")
-    ] = 900.0,
+    ] = BASE.modulus / 1e6,
     points: Annotated[
         int, typer.Option("--points", help="Stations along the ski (with --ski).")
     ] = 2048,

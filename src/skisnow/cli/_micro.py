@@ -10,7 +10,7 @@ import numpy as np
 import typer
 
 from skisnow._errors import InputError
-from skisnow._values import parse_values
+from skisnow._values import parse_values, sorted_unique
 from skisnow.cli._app import app
 from skisnow.cli._render import console, emit_json, err_console, print_table
 
@@ -21,10 +21,8 @@ _JSON = typer.Option("--json", help="Print one JSON document to stdout, nothing 
 
 def parse_grain_range(text: str) -> np.ndarray:
     """``START:STOP:STEP`` (inclusive, µm), a list or one value → sorted unique diameters [m]."""
-    values = parse_values(text, name="--grain-um")
-    if np.any(values <= 0):
-        raise InputError(f"--grain-um {text!r}: diameters must be positive µm")
-    return np.unique(np.round(values, 6)) * 1e-6
+    values = np.round(parse_values(text, name="--grain-um"), 6)
+    return sorted_unique(values, name="--grain-um", unit="µm", positive=True) * 1e-6
 
 
 def _load(source: str, pixel_um: float | None, height_unit: str, *, seed: int = 0) -> Any:

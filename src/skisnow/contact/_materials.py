@@ -8,15 +8,14 @@ E' is **twice** the contact modulus E* of Hertz/Johnson (1/E* = Σ (1 − ν²)/
 kernels of :mod:`skisnow.contact._kernels` take E' and use the prefactor 2/(π E') = 1/(π E*), so
 Hertz's formulas hold with E* = E'/2 (the Hertz tests in ``tests/contact`` prove it). For the
 paper's stone bench (ski base 900 MPa, stone 70 GPa, ν = 0.3 on both), E' ≈ 1.95 GPa.
+
+:class:`Material` and the presets :data:`BASE` (the default base) and :data:`STONE` are defined
+once in :mod:`skisnow.materials` and re-exported here.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
-import numpy as np
-
-from skisnow._errors import InputError
+from skisnow.materials import BASE, STONE, Material
 
 __all__ = [
     "BASE",
@@ -29,34 +28,6 @@ __all__ = [
 ]
 
 
-@dataclass(frozen=True, kw_only=True)
-class Material:
-    """An isotropic linear-elastic material: ``modulus`` E [Pa], ``poisson`` ν [-]."""
-
-    name: str
-    modulus: float
-    poisson: float = 0.3
-
-    def __post_init__(self) -> None:
-        if not np.isfinite(self.modulus) or self.modulus <= 0:
-            raise InputError(
-                f"{self.name}: modulus must be positive and finite, got {self.modulus}"
-            )
-        if not -1.0 < self.poisson < 0.5:
-            raise InputError(
-                f"{self.name}: Poisson ratio must lie in (-1, 0.5), got {self.poisson}"
-            )
-
-    @property
-    def plane_strain_compliance(self) -> float:
-        """(1 − ν²)/E [1/Pa]."""
-        return (1.0 - self.poisson**2) / self.modulus
-
-
-#: The UHMWPE ski base of the paper's simulations: E = 900 MPa, ν = 0.3.
-BASE = Material(name="ski base (UHMWPE)", modulus=900e6, poisson=0.3)
-#: The granite stone of the SkiSelector bench: E = 70 GPa, ν = 0.3 (the paper's Figure 4).
-STONE = Material(name="stone", modulus=70e9, poisson=0.3)
 #: The range of snow moduli the paper simulates (Lintzén & Edeskär 2015), Pa.
 SNOW_MODULUS_RANGE: tuple[float, float] = (20e6, 400e6)
 

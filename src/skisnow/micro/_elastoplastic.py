@@ -52,12 +52,9 @@ __all__ = [
 
 def ice_base_modulus() -> float:
     """Equivalent modulus E' [Pa] of ice on UHMWPE (Table 2), contact-package convention."""
-    from skisnow.contact._materials import Material, effective_modulus
+    from skisnow.contact import effective_modulus
 
-    return effective_modulus(
-        Material(name="ice", modulus=ICE.youngs_modulus, poisson=ICE.poisson_ratio),
-        Material(name="UHMWPE", modulus=UHMWPE.youngs_modulus, poisson=UHMWPE.poisson_ratio),
-    )
+    return effective_modulus(ICE, UHMWPE)
 
 
 @dataclass(frozen=True, eq=False)

@@ -2,7 +2,9 @@
 
 Temperatures are in °C here — the seed's fits are linear in the Celsius temperature, and a
 Kelvin argument would invite silent errors — and every function says so in its argument name.
-Hardness and moduli are returned in Pa (SI).
+Hardness and moduli are returned in Pa (SI). The elastic constants of ice and UHMWPE (Table 2)
+are the presets :data:`ICE` and :data:`UHMWPE` of :mod:`skisnow.materials` (one
+:class:`Material` for every scale), re-exported here.
 """
 
 from __future__ import annotations
@@ -13,6 +15,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from skisnow._errors import DomainWarning, InputError
+from skisnow.materials import ICE, UHMWPE, Material
 
 __all__ = [
     "ICE",
@@ -24,21 +27,6 @@ __all__ = [
     "ice_hardness",
     "uhmwpe_hardness",
 ]
-
-
-@dataclass(frozen=True)
-class Material:
-    """Elastic constants of a body (Table 2): Young's modulus [Pa], Poisson's ratio [-]."""
-
-    name: str
-    youngs_modulus: float
-    poisson_ratio: float
-
-
-#: Ice grain (seed §3.2, after Böttcher et al. 2017): E = 9.5 GPa, ν = 0.31.
-ICE = Material("ice", 9.5e9, 0.31)
-#: Ski base, UHMWPE (seed §3.4): E = 840 MPa, ν = 0.46.
-UHMWPE = Material("UHMWPE", 840e6, 0.46)
 
 
 def _temperature(temperature_c: float) -> float:
@@ -135,5 +123,5 @@ def deformation_regime(temperature_c: float, *, model: str = "poirier") -> Regim
         base_hardness=hb,
         yielding="ice" if hi < hb else "base",
         hardness_ratio=hb / hi,
-        ice_stiffness_to_hardness=ICE.youngs_modulus / hi,
+        ice_stiffness_to_hardness=ICE.modulus / hi,
     )

@@ -18,6 +18,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from skisnow import __version__
 from skisnow._errors import InputError
+from skisnow._values import sorted_unique
 from skisnow.io._bench import BenchData
 from skisnow.ski._beam import DEFAULT_BOOT_LENGTH, DEFAULT_N_ELEMENTS, BeamSolution, solve_beam
 from skisnow.ski._skis import Ski, get_ski
@@ -43,13 +44,6 @@ def bench_grid(ski: Ski, dx: float = 1e-3) -> NDArray[np.float64]:
     if k1 - k0 < 2:
         raise InputError(f"dx = {dx} m is too coarse for a {ski.length} m ski")
     return np.clip(np.arange(k0, k1 + 1) * dx, ski.x_tail, ski.x_tip)
-
-
-def _as_sorted_unique(values: ArrayLike, name: str, unit: str) -> NDArray[np.float64]:
-    arr = np.atleast_1d(np.asarray(values, dtype=float))
-    if arr.ndim != 1 or arr.size == 0 or not np.all(np.isfinite(arr)):
-        raise InputError(f"{name} must be a non-empty list of finite numbers [{unit}]")
-    return np.unique(arr)
 
 
 def run_bench(
@@ -89,10 +83,10 @@ def run_bench(
     ski = get_ski(ski) if isinstance(ski, str) else ski
     if not isinstance(ski, Ski):
         raise InputError(f"ski must be a Ski or a shipped ski name, got {type(ski).__name__}")
-    ms = _as_sorted_unique(masses, "masses", "kg")
+    ms = sorted_unique(masses, name="masses", unit="kg")
     if np.any(ms <= 0):
         raise InputError(f"masses must be > 0 kg, got {ms[ms <= 0].tolist()}")
-    ps = _as_sorted_unique(load_positions, "load_positions", "m")[::-1]
+    ps = sorted_unique(load_positions, name="load_positions", unit="m")[::-1]
     if not (np.isfinite(noise) and noise >= 0):
         raise InputError(f"noise must be >= 0 m, got {noise}")
     x = bench_grid(ski, dx)

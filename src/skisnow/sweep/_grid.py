@@ -14,10 +14,9 @@ import math
 from dataclasses import asdict, dataclass, field
 from typing import Any
 
-import numpy as np
-
 from skisnow._errors import InputError
-from skisnow._values import parse_values  # noqa: F401  (re-exported: part of the sweep API)
+from skisnow._values import parse_values, sorted_unique  # noqa: F401  (parse_values re-exported)
+from skisnow.materials import BASE
 
 #: Contact models the sweep can ask the contact solver for.
 MODELS: tuple[str, ...] = ("strip", "surface")
@@ -26,23 +25,14 @@ PROFILE_SOURCES: tuple[str, ...] = ("network", "beam")
 #: The zones reported for every contact solution (``skisnow.contact.contact_zones``).
 ZONES: tuple[str, ...] = ("rear", "middle", "front", "total")
 
-#: Ski base modulus E_base and Poisson ratio ν of Kalliorinne et al. 2023, §3.2 (used in eq. 2).
-PAPER_BASE_MODULUS: float = 900e6
-PAPER_POISSON: float = 0.3
+#: Ski base modulus E_base and Poisson ratio ν of Kalliorinne et al. 2023, §3.2 (used in eq. 2):
+#: the default base material :data:`skisnow.materials.BASE`.
+PAPER_BASE_MODULUS: float = BASE.modulus
+PAPER_POISSON: float = BASE.poisson
 
 
-def _as_sorted_unique(values: Any, name: str, *, positive: bool) -> tuple[float, ...]:
-    arr = np.atleast_1d(np.asarray(values, dtype=float))
-    if arr.ndim != 1 or arr.size == 0:
-        raise InputError(f"{name}: need a non-empty 1-D list of values, got shape {arr.shape}")
-    if not np.all(np.isfinite(arr)):
-        raise InputError(f"{name}: all values must be finite, got {arr.tolist()}")
-    if positive and np.any(arr <= 0):
-        raise InputError(f"{name}: all values must be > 0, got min {arr.min()}")
-    uniq = np.unique(arr)
-    if uniq.size != arr.size:
-        raise InputError(f"{name}: values must be distinct, got {arr.tolist()}")
-    return tuple(float(v) for v in uniq)
+def _as_sorted_unique(values: Any, name: str, unit: str, *, positive: bool) -> tuple[float, ...]:
+    return tuple(float(v) for v in sorted_unique(values, name=name, unit=unit, positive=positive))
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -83,14 +73,18 @@ class SweepSpec:
         if not skis or len(set(skis)) != len(skis) or not all(isinstance(s, str) for s in skis):
             raise InputError(f"skis: need distinct ski names, got {skis!r}")
         object.__setattr__(self, "skis", skis)
-        object.__setattr__(self, "masses", _as_sorted_unique(self.masses, "masses", positive=True))
+        object.__setattr__(
+            self, "masses", _as_sorted_unique(self.masses, "masses", "kg", positive=True)
+        )
         object.__setattr__(
             self,
             "load_positions",
-            _as_sorted_unique(self.load_positions, "load_positions", positive=False),
+            _as_sorted_unique(self.load_positions, "load_positions", "m", positive=False),
         )
         object.__setattr__(
-            self, "snow_moduli", _as_sorted_unique(self.snow_moduli, "snow_moduli", positive=True)
+            self,
+            "snow_moduli",
+            _as_sorted_unique(self.snow_moduli, "snow_moduli", "Pa", positive=True),
         )
         if self.model not in MODELS:
             raise InputError(f"model: {self.model!r} is not one of {MODELS}")
