@@ -114,3 +114,35 @@ def test_shipped_networks_match_the_current_beam(ski):
         truth = solve_beam(s, mass=mass, load_position=pos).sample(x)
         err = np.abs(net.predict(x, mass, pos) - truth)
         assert err.mean() < 15e-6, f"{ski} {mass} kg {pos * 1e3:.0f} mm: {err.mean() * 1e6:.1f} µm"
+
+
+def test_demo_refuses_a_corrupt_shipped_model_and_falls_back_only_when_absent(
+    toy_network, tmp_path, monkeypatch
+):
+    """A corrupt shipped model is an error, not a silent switch to the beam (it used to be
+    hidden by a bare ``except Exception`` in the demo); a missing one falls back with a note."""
+    import skisnow.io._model as model_io
+    from skisnow.cli._demo import network_or_beam
+    from skisnow.ski import SHIPPED_SKIS
+
+    pkg = tmp_path / "fake_models_pkg"
+    (pkg / "models").mkdir(parents=True)
+    (pkg / "__init__.py").write_text("")
+    for name in SHIPPED_SKIS:
+        save_network(toy_network, pkg / "models" / name)
+    monkeypatch.syspath_prepend(str(tmp_path))
+    monkeypatch.setattr(model_io, "MODELS_PACKAGE", "fake_models_pkg")
+    model_io.shipped_network.cache_clear()
+    try:
+        assert network_or_beam() == ("network", "")
+        model_io.shipped_network.cache_clear()
+        npz = pkg / "models" / f"{SHIPPED_SKIS[0]}.npz"
+        npz.write_bytes(npz.read_bytes()[:-50])  # truncated
+        with pytest.raises(FileFormatError, match="corrupt or truncated"):
+            network_or_beam()
+        model_io.shipped_network.cache_clear()
+        npz.unlink()
+        source, note = network_or_beam()
+        assert source == "beam" and "no shipped camber network" in note
+    finally:
+        model_io.shipped_network.cache_clear()

@@ -7,6 +7,7 @@ from typing import Annotated, Any
 
 import typer
 
+from skisnow._errors import FileFormatError, InputError
 from skisnow.cli._app import app
 from skisnow.cli._render import console, emit_json
 
@@ -45,15 +46,21 @@ def run_ski_demo(out: Path, *, progress: bool = True) -> dict[str, Any]:
 
 def network_or_beam() -> tuple[str, str]:
     """``('network', '')`` when both shipped skis have their pretrained network, else
-    ``('beam', reason)``."""
+    ``('beam', reason)``.
+
+    Only a network that is not shipped falls back to the beam; a shipped model file that is
+    corrupt, truncated or of another format version raises :class:`~skisnow.FileFormatError`
+    (a broken installation must not pass silently as a beam demo).
+    """
+    from skisnow.io import shipped_network
     from skisnow.ski import SHIPPED_SKIS
 
     try:
-        from skisnow.ski import shipped_network
-
         for name in SHIPPED_SKIS:
             shipped_network(name)
-    except Exception as exc:  # no network shipped yet / cannot load: say so, use the beam
+    except FileFormatError:
+        raise
+    except InputError as exc:  # no network shipped for this ski: say so, use the beam
         return "beam", f"shipped networks unavailable ({exc}); profiles from the beam"
     return "network", ""
 
