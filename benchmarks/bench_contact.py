@@ -159,9 +159,9 @@ def bench_hertz(sizes: list[int], peers: bool, tol: float) -> None:
     for n in sizes:
         x, h, w, e_prime, _ = hertz_problem(n)
         # cold: includes building the kernel and its spectrum, as tamaas's solve does not
-        from skisnow.contact import _solver
+        from skisnow.contact import _problem
 
-        _solver._operator.cache_clear()
+        _problem._operator.cache_clear()
         wall, cpu, sol = timed(
             lambda x=x, h=h, w=w, e=e_prime: solve_contact(
                 x, h, y=x, load=w, modulus=e, model="surface", control="load", tol=tol

@@ -23,6 +23,7 @@ from skisnow._errors import (
     ImplausibleValueError,
     InputError,
     SkisnowError,
+    SolverStatus,
     UnsupportedLoadError,
 )
 
@@ -38,6 +39,7 @@ __all__ = [
     "ImplausibleValueError",
     "InputError",
     "SkisnowError",
+    "SolverStatus",
     "UnsupportedLoadError",
     "__version__",
     "allow_implausible",

@@ -8,6 +8,7 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
+import skisnow.contact._candidates as cand_mod
 import skisnow.contact._solver as solver_mod
 from skisnow import InputError
 from skisnow.contact import effective_modulus, reference, snow, solve_contact
@@ -119,7 +120,7 @@ def test_missed_cells_are_found_and_added(monkeypatch) -> None:
         builds.append(len(idx))
         return original(cls, full, idx, dense=dense)
 
-    monkeypatch.setattr(solver_mod, "_CANDIDATE_MARGIN", -1.0)
+    monkeypatch.setattr(cand_mod, "_CANDIDATE_MARGIN", -1.0)
     monkeypatch.setattr(RestrictedOperator, "build", classmethod(counting))
     cand = _load_path(True)
     assert len(builds) > len(cand)  # at least one resume happened
@@ -177,17 +178,18 @@ def test_candidates_growing_to_most_of_the_grid_finish_on_the_whole_grid(monkeyp
     # The previous contact as the only candidates, and room for no more: the first resume has
     # too many candidates, so the iteration must finish on the whole grid from where it stands.
     whole = _load_path(False, masses=(40.0, 60.0))
-    monkeypatch.setattr(solver_mod, "_CANDIDATE_MARGIN", -1.0)
+    monkeypatch.setattr(cand_mod, "_CANDIDATE_MARGIN", -1.0)
     first = whole[0].contact.sum()
-    monkeypatch.setattr(solver_mod, "_CANDIDATE_FRACTION", (first + 40) / 4096)
+    monkeypatch.setattr(cand_mod, "_CANDIDATE_FRACTION", (first + 40) / 4096)
     whole_calls = []
-    pk = solver_mod._pk
+    pk = cand_mod.polonsky_keer
 
-    def counting_pk(conv, h, *args, **kwargs):
+    def counting_pk(operator, h, **kwargs):
         whole_calls.append(h.size)
-        return pk(conv, h, *args, **kwargs)
+        return pk(operator, h, **kwargs)
 
-    monkeypatch.setattr(solver_mod, "_pk", counting_pk)
+    monkeypatch.setattr(cand_mod, "polonsky_keer", counting_pk)
+    monkeypatch.setattr(solver_mod, "polonsky_keer", counting_pk)
     cand = _load_path(True, masses=(40.0, 60.0))
     assert 4096 in whole_calls[1:]  # the second solve ended on the whole grid ...
     assert any(n < 4096 for n in whole_calls[1:])  # ... after starting on the candidates

@@ -2,15 +2,34 @@
 
 Kalliorinne et al. (2023) §3.2: the loaded camber profile, a rigid body free to translate and to
 rotate about the load point, is pressed into an elastic half-space of equivalent modulus E'
-(eq. 2) with force and moment balance (eq. 3). Public API:
+(eq. 2) with force and moment balance (eq. 3).
 
-* :func:`effective_modulus`, :class:`Material`, presets :data:`BASE`, :data:`STONE`, :func:`snow`;
-* :func:`solve_contact` → :class:`ContactSolution` (models 'strip', 'surface', 'line'; control
-  'moment', 'load', 'displacement');
-* :func:`contact_zones` → :class:`ZoneMetrics` (rear / middle / front / total, Breitschädel);
-* :mod:`skisnow.contact.reference` — Hertz line and sphere, flat punch;
-* files: :func:`read_profile` (CSV ``x_mm,height_mm``), :func:`write_fields`, :func:`fields_table`;
-* the half-space kernels and FFT convolution in :mod:`skisnow.contact._kernels`.
+Equation map (paper → function):
+
+==============================================  =================================================
+Kalliorinne et al. (2023) eq. 2, E'             :func:`effective_modulus`, :class:`Material`,
+                                                :data:`BASE`, :data:`STONE`, :func:`snow`
+Boussinesq / Love (1929) influence coefficients :func:`surface_kernel`, :func:`strip_kernel`,
+(the half-space u = K p)                        :func:`line_kernel`, :class:`Convolution`
+Kalliorinne et al. (2023) eq. 3, force and      :func:`solve_contact` → :class:`ContactSolution`
+moment balance of the loaded profile            (models 'strip', 'surface', 'line'; control
+                                                'moment', 'load', 'displacement')
+Polonsky & Keer (1999) constrained CG, with     :func:`polonsky_keer` → :class:`PolonskyKeerResult`
+the moment constraint, a hardness cap           on any :class:`ComplianceOperator`
+(Sainsot & Lubrecht 2011) and a circulant       (:class:`CellOperator` for a grid)
+preconditioner (Vollebregt 2014)
+contact zones and lengths; Breitschädel (2012)  :func:`contact_zones` → :class:`ZoneMetrics`,
+50 µm criterion                                 :func:`patches`
+Hertz (line, sphere), flat punch (Johnson 1985) :mod:`skisnow.contact.reference`
+==============================================  =================================================
+
+Files: :func:`read_profile` (CSV ``x_mm,height_mm``), :func:`write_fields`,
+:func:`fields_table`.
+
+Where the code is: ``_problem`` (validation, grid, operator), ``_starts`` (warm, multilevel and
+rigid starts), ``_polonsky_keer`` (the iteration), ``_candidates`` (the 1D candidate-cell
+restriction), ``_solver`` (:func:`solve_contact`, a short pipeline over them), ``_kernels``
+(kernels and FFT convolution), ``_zones``, ``_materials``, ``_io``.
 """
 
 from skisnow.contact import reference
@@ -33,6 +52,12 @@ from skisnow.contact._materials import (
     effective_modulus,
     snow,
 )
+from skisnow.contact._polonsky_keer import (
+    CellOperator,
+    ComplianceOperator,
+    PolonskyKeerResult,
+    polonsky_keer,
+)
 from skisnow.contact._solver import ContactSolution, solve_contact
 from skisnow.contact._zones import (
     BREITSCHAEDEL_THRESHOLD,
@@ -47,9 +72,12 @@ __all__ = [
     "BREITSCHAEDEL_THRESHOLD",
     "SNOW_MODULUS_RANGE",
     "STONE",
+    "CellOperator",
+    "ComplianceOperator",
     "ContactSolution",
     "Convolution",
     "Material",
+    "PolonskyKeerResult",
     "Zone",
     "ZoneMetrics",
     "contact_modulus",
@@ -59,6 +87,7 @@ __all__ = [
     "line_convolution",
     "line_kernel",
     "patches",
+    "polonsky_keer",
     "read_profile",
     "reference",
     "snow",
