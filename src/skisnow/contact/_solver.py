@@ -111,10 +111,19 @@ class ContactSolution:
     residual: float
     residual_history: np.ndarray = field(repr=False)
     converged: bool
-    status: SolverStatus
+    status: SolverStatus | None = None
     message: str
     force_residual: float
     moment_residual: float
+
+    def __post_init__(self) -> None:
+        # a solution built without a status (e.g. by hand, as a test fixture) gets the one its
+        # ``converged`` flag implies
+        if self.status is None:
+            status = SolverStatus.SUCCESSFUL if self.converged else SolverStatus.MAX_STEPS_REACHED
+            object.__setattr__(self, "status", status)
+        elif self.status.successful != self.converged:
+            raise InputError(f"status {self.status.value} contradicts converged={self.converged}")
 
     @property
     def dx(self) -> float:

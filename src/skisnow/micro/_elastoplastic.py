@@ -193,15 +193,11 @@ def elastoplastic_contact(
     residual = float(state["residual"])
     converged = bool(residual < tol and abs(p.mean() - pressure) <= 1e-6 * pressure)
     it = int(state["iterations"])
-    if not converged and raise_on_failure:
-        raise ConvergenceError(
-            f"elastoplastic contact: residual {residual:.3g} after {it} iterations (tol {tol})"
-        )
     w = slope_factor(make_topography(h, dx=topo.dx, dy=topo.dy))
     contact = p > 0
     n_contact = int(contact.sum())
     gap = conv(p) - h + approach
-    return ElastoplasticResult(
+    result = ElastoplasticResult(
         pressure=p,
         gap=gap,
         approach=float(approach),
@@ -213,3 +209,9 @@ def elastoplastic_contact(
         residual=residual,
         converged=converged,
     )
+    if not converged and raise_on_failure:
+        raise ConvergenceError(
+            f"elastoplastic contact: residual {residual:.3g} after {it} iterations (tol {tol})",
+            result=result,
+        )
+    return result

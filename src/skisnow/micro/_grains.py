@@ -118,7 +118,8 @@ def fit_grain_distribution(
             max_nfev=10_000,
         )
     except (RuntimeError, ValueError) as exc:
-        raise ConvergenceError(f"grain-size fit did not converge: {exc}") from exc
+        # curve_fit returns nothing partial when it fails: there is no result to carry
+        raise ConvergenceError(f"grain-size fit did not converge: {exc}", result=None) from exc
     log_peak, b, cs = (float(v) for v in popt)
     c = cs / scale
     mode = b / c
