@@ -60,17 +60,24 @@ def validate_bench_table(
 ) -> pd.DataFrame:
     """Check a bench table and return a clean copy (column order, dtypes); raise on any defect.
 
-    Args:
-        table: the raw table.
-        where: the file name (or ``<table>``) used in messages.
-        row_offset: number added to the 0-based data row index to report rows (CSV: the line
-            number of the first data row; Parquet and in-memory tables: 1).
-        csv: report ``line N`` (CSV) instead of ``row N``.
+    Parameters
+    ----------
+    table
+        the raw table.
+    where
+        the file name (or ``<table>``) used in messages.
+    row_offset
+        number added to the 0-based data row index to report rows (CSV: the line
+        number of the first data row; Parquet and in-memory tables: 1).
+    csv
+        report ``line N`` (CSV) instead of ``row N``.
 
-    Raises:
-        FileFormatError: missing, misnamed or unexpected columns; non-numeric values; NaN/inf;
-            mass <= 0; duplicated samples; x not strictly increasing within a profile; a
-            profile with fewer than :data:`MIN_PROFILE_POINTS` samples; no rows.
+    Raises
+    ------
+    FileFormatError
+        missing, misnamed or unexpected columns; non-numeric values; NaN/inf;
+        mass <= 0; duplicated samples; x not strictly increasing within a profile; a
+        profile with fewer than :data:`MIN_PROFILE_POINTS` samples; no rows.
     """
     cols = [str(c) for c in table.columns]
     missing = [c for c in BENCH_COLUMNS if c not in cols]
@@ -372,8 +379,10 @@ def write_bench(data: BenchData, path: str | Path) -> Path:
 def read_bench(path: str | Path) -> BenchData:
     """Read and validate a bench file (.csv or .parquet); see the module docs for the format.
 
-    Raises:
-        FileFormatError: the file is missing, unreadable or fails validation (nothing loaded).
+    Raises
+    ------
+    FileFormatError
+        the file is missing, unreadable or fails validation (nothing loaded).
     """
     path = Path(path)
     suf = _suffix(path)

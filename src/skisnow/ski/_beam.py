@@ -130,11 +130,16 @@ def _element_stiffness(x_nodes: NDArray[np.float64], ei_at: object) -> NDArray[n
 def beam_stiffness_matrix(x_nodes: ArrayLike, stiffness: ArrayLike | object) -> NDArray[np.float64]:
     """Dense global stiffness matrix of a Hermite-cubic Euler–Bernoulli beam.
 
-    Args:
-        x_nodes: increasing node positions [m].
-        stiffness: EI [N m²], either a constant or a callable EI(x) (vectorised).
+    Parameters
+    ----------
+    x_nodes
+        increasing node positions [m].
+    stiffness
+        EI [N m²], either a constant or a callable EI(x) (vectorised).
 
-    Returns:
+    Returns
+    -------
+    ndarray
         (2n, 2n) matrix for the DOF order (w_0, θ_0, w_1, θ_1, ...), w upward [m], θ = dw/dx.
     """
     x = np.asarray(x_nodes, dtype=float)
@@ -284,21 +289,32 @@ def _intervals(x: NDArray[np.float64], mask: NDArray[np.bool_]) -> tuple[tuple[f
 class BeamSolution:
     """Equilibrium of the loaded ski on the rigid plane (all SI).
 
-    Attributes:
-        ski: the ski that was solved.
-        mass, load_position, boot_length, boot_distribution: the load case [kg], [m], [m].
-        force: the total load m·g [N].
-        x: node positions [m].
-        height: loaded camber height h(x) >= 0 at the nodes [m] (gap to the plane).
-        reactions: nodal contact forces r >= 0 [N] (upward).
-        contact_intervals: ((start, end), ...) [m] of runs of nodes in contact (h = 0).
-        deflection, slope: elastic nodal deflection w [m] and slope θ [-] of the beam clamped at
-            the node ``x[clamp]`` (the rigid motion is in ``translation`` and ``rotation``).
-        translation, rotation: rigid motion a [m], b [-] (Lagrange multipliers of the balances).
-        iterations: pivoting iterations; residual: complementarity residual (dimensionless:
-            max over nodes of |h| on the contact set, of the violations of h >= 0 and r >= 0
-            and of |r h|, scaled by F and the free-camber range); converged: whether the
-            active-set iteration terminated with every sign condition met.
+    Attributes
+    ----------
+    ski
+        the ski that was solved.
+    mass, load_position, boot_length, boot_distribution
+        the load case [kg], [m], [m].
+    force
+        the total load m·g [N].
+    x
+        node positions [m].
+    height
+        loaded camber height h(x) >= 0 at the nodes [m] (gap to the plane).
+    reactions
+        nodal contact forces r >= 0 [N] (upward).
+    contact_intervals
+        ((start, end), ...) [m] of runs of nodes in contact (h = 0).
+    deflection, slope
+        elastic nodal deflection w [m] and slope θ [-] of the beam clamped at
+        the node ``x[clamp]`` (the rigid motion is in ``translation`` and ``rotation``).
+    translation, rotation
+        rigid motion a [m], b [-] (Lagrange multipliers of the balances).
+    iterations
+        pivoting iterations; residual: complementarity residual (dimensionless:
+        max over nodes of |h| on the contact set, of the violations of h >= 0 and r >= 0
+        and of |r h|, scaled by F and the free-camber range); converged: whether the
+        active-set iteration terminated with every sign condition met.
     """
 
     ski: Ski
@@ -492,26 +508,40 @@ def solve_beam(
 ) -> BeamSolution:
     """Loaded camber of a free-floating ski on a rigid plane (seed paper 000, §3.1, eq. 1).
 
-    Args:
-        ski: the ski (see :class:`~skisnow.ski.Ski`).
-        mass: load m [kg]; the force is m·g with g = STANDARD_GRAVITY.
-        load_position: x_m [m] from the balance point, positive toward the tip (the paper's
-            "120 mm behind the balance point" is -0.120).
-        boot_length: length [m] of the boot plate over which the load is spread.
-        boot_distribution: ``'uniform'`` (default) or ``'point'`` (a concentrated force at x_m).
-        n_elements: number of Hermite-cubic beam elements.
-        warm_start: a previous :class:`BeamSolution` on the same mesh (or indices of nodes) to
-            start the active set from; results do not depend on it, only the iteration count.
-        max_iterations: pivoting iteration limit.
-        raise_on_failure: raise :class:`ConvergenceError` (with ``.result``) if not converged;
-            otherwise return the result with ``converged=False``.
+    Parameters
+    ----------
+    ski
+        the ski (see :class:`~skisnow.ski.Ski`).
+    mass
+        load m [kg]; the force is m·g with g = STANDARD_GRAVITY.
+    load_position
+        x_m [m] from the balance point, positive toward the tip (the paper's
+        "120 mm behind the balance point" is -0.120).
+    boot_length
+        length [m] of the boot plate over which the load is spread.
+    boot_distribution
+        ``'uniform'`` (default) or ``'point'`` (a concentrated force at x_m).
+    n_elements
+        number of Hermite-cubic beam elements.
+    warm_start
+        a previous :class:`BeamSolution` on the same mesh (or indices of nodes) to
+        start the active set from; results do not depend on it, only the iteration count.
+    max_iterations
+        pivoting iteration limit.
+    raise_on_failure
+        raise :class:`ConvergenceError` (with ``.result``) if not converged;
+        otherwise return the result with ``converged=False``.
 
-    Returns:
-        :class:`BeamSolution` with h >= 0, r >= 0, r·h = 0, Σr = m·g and Σ r x = moment of the
-        boot load about the balance point (to round-off).
+    Returns
+    -------
+    BeamSolution
+        h >= 0, r >= 0, r·h = 0, Σr = m·g and Σ r x = moment of the boot load about the
+        balance point (to round-off), and the ``status`` of the active-set iteration.
 
-    Raises:
-        InputError: invalid arguments; UnsupportedLoadError: the load is not on the ski (the ski
+    Raises
+    ------
+    InputError
+        invalid arguments; UnsupportedLoadError: the load is not on the ski (the ski
         would tip over an end); ConvergenceError: see ``raise_on_failure``.
     """
     mass = float(mass)

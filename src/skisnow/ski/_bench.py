@@ -60,22 +60,33 @@ def run_bench(
 ) -> BenchData:
     """Run the virtual camber bench on ``ski`` and return the tidy bench table.
 
-    Args:
-        ski: a :class:`Ski` or the name of a shipped ski.
-        masses: masses m [kg] (each > 0); default 5..130 kg in 5 kg steps.
-        load_positions: positions x_m [m] from the balance point (negative = behind);
-            default -0.040..-0.240 m in 40 mm steps.
-        dx: sampling step [m] along the ski (default 1 mm).
-        noise: standard deviation [m] of Gaussian height noise added to every sample (a bench's
-            resolution is about 1e-5 m); 0 (default) for exact beam heights. With noise, heights
-            are not clipped, so samples in contact can read slightly below 0 as on a real bench.
-        seed: seed of the noise generator (NumPy ``default_rng``).
-        progress: called as ``progress(done, total)`` after each profile (e.g. a Rich bar).
-        boot_length, n_elements: passed to :func:`~skisnow.ski.solve_beam`.
+    Parameters
+    ----------
+    ski
+        a :class:`Ski` or the name of a shipped ski.
+    masses
+        masses m [kg] (each > 0); default 5..130 kg in 5 kg steps.
+    load_positions
+        positions x_m [m] from the balance point (negative = behind);
+        default -0.040..-0.240 m in 40 mm steps.
+    dx
+        sampling step [m] along the ski (default 1 mm).
+    noise
+        standard deviation [m] of Gaussian height noise added to every sample (a bench's
+        resolution is about 1e-5 m); 0 (default) for exact beam heights. With noise, heights
+        are not clipped, so samples in contact can read slightly below 0 as on a real bench.
+    seed
+        seed of the noise generator (NumPy ``default_rng``).
+    progress
+        called as ``progress(done, total)`` after each profile (e.g. a Rich bar).
+    boot_length, n_elements
+        passed to :func:`~skisnow.ski.solve_beam`.
 
-    Returns:
-        :class:`~skisnow.io.BenchData` with columns ski, mass_kg, load_position_mm, x_mm,
-        height_mm (profiles ordered by position, then mass) and metadata.
+    Returns
+    -------
+    BenchData
+        Columns ski, mass_kg, load_position_mm, x_mm, height_mm (profiles ordered by
+        position, then mass) and metadata.
 
     The masses at one position are solved in increasing order, each warm-started from the
     previous contact set; the profile is sampled with the Hermite shape functions of the beam.

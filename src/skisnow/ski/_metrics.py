@@ -350,11 +350,16 @@ def ski_metrics(
 ) -> SkiMetrics:
     """Practitioners' metrics of a ski from the beam (a :class:`Ski` or a shipped name) or a bench.
 
-    Args:
-        source: a :class:`Ski`, a shipped ski name, or :class:`~skisnow.io.BenchData`.
-        body_mass: the skier's mass [kg] (half and full body weight are applied).
-        load_position: x_m [m] of both loads (default -0.080 m, the practitioners' position).
-        ski: which ski of a multi-ski bench.
+    Parameters
+    ----------
+    source
+        a :class:`Ski`, a shipped ski name, or :class:`~skisnow.io.BenchData`.
+    body_mass
+        the skier's mass [kg] (half and full body weight are applied).
+    load_position
+        x_m [m] of both loads (default -0.080 m, the practitioners' position).
+    ski
+        which ski of a multi-ski bench.
 
     From a bench, the profiles at ½ and 1 body mass are interpolated linearly between the two
     nearest bench masses at ``load_position`` (which must be one of the bench's positions) and

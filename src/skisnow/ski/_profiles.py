@@ -23,23 +23,33 @@ def camber_profile(
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Loaded camber profile h(x) of a ski: seed paper 000, eq. 1, h = f(x, m, x_m).
 
-    Args:
-        ski_name: a shipped ski name (``'classic'``, ``'skate'``) or, for ``source='beam'``,
-            a :class:`~skisnow.ski.Ski`.
-        mass: load m [kg]; a 1-D array of k masses gives k profiles at once (the network
-            predicts them in one call, ~50x faster than one call per mass).
-        load_position: x_m [m] from the balance point, positive toward the tip.
-        x: positions [m] on the ski; default: every 1 mm over the running surface.
-        source: ``'beam'`` — the virtual ski (Euler–Bernoulli beam on the rigid bench plane,
-            :func:`~skisnow.ski.solve_beam`, Hermite-interpolated); ``'network'`` — the shipped
-            camber network trained on the virtual bench (issue 4).
+    Parameters
+    ----------
+    ski_name
+        a shipped ski name (``'classic'``, ``'skate'``) or, for ``source='beam'``,
+        a :class:`~skisnow.ski.Ski`.
+    mass
+        load m [kg]; a 1-D array of k masses gives k profiles at once (the network
+        predicts them in one call, ~50x faster than one call per mass).
+    load_position
+        x_m [m] from the balance point, positive toward the tip.
+    x
+        positions [m] on the ski; default: every 1 mm over the running surface.
+    source
+        ``'beam'`` — the virtual ski (Euler–Bernoulli beam on the rigid bench plane,
+        :func:`~skisnow.ski.solve_beam`, Hermite-interpolated); ``'network'`` — the shipped
+        camber network trained on the virtual bench (issue 4).
 
-    Returns:
-        (x [m], height [m]) with height >= 0 for the beam; height has shape ``(n,)`` for a
+    Returns
+    -------
+    x, height : ndarray
+        Positions [m] and heights [m] (>= 0 for the beam); height has shape ``(n,)`` for a
         scalar mass and ``(k, n)`` for k masses.
 
-    Raises:
-        UnsupportedLoadError: (beam) a load the ski cannot carry on the bench plane.
+    Raises
+    ------
+    UnsupportedLoadError
+        (beam) a load the ski cannot carry on the bench plane.
     """
     if source not in ("beam", "network"):
         raise InputError(f"source must be 'beam' or 'network', got {source!r}")
