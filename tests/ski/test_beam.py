@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from skisnow import ConvergenceError, InputError, UnsupportedLoadError
+from skisnow import ConvergenceError, InputError, SolverStatus, UnsupportedLoadError
 from skisnow.constants import STANDARD_GRAVITY
 from skisnow.ski import (
     Ski,
@@ -201,8 +201,14 @@ def test_convergence_error_on_request() -> None:
     with pytest.raises(ConvergenceError) as info:
         solve_beam(ski, mass=60.0, load_position=-0.07, max_iterations=1)
     assert info.value.result is not None and not info.value.result.converged
+    assert info.value.status is SolverStatus.MAX_STEPS_REACHED
+    assert "maximum number of iterations" in str(info.value)
     sol = solve_beam(ski, mass=60.0, load_position=-0.07, max_iterations=1, raise_on_failure=False)
-    assert not sol.converged
+    assert not sol.converged and sol.status is SolverStatus.MAX_STEPS_REACHED
+    # the same case with the default budget succeeds and meets the sign conditions
+    ok = solve_beam(ski, mass=60.0, load_position=-0.07)
+    assert ok.status is SolverStatus.SUCCESSFUL and ok.converged
+    assert np.all(ok.height >= 0) and np.all(ok.reactions >= -1e-9 * ok.force)
 
 
 def test_random_skis_satisfy_balance_and_complementarity() -> None:

@@ -53,7 +53,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 from scipy.linalg import solveh_banded
 
-from skisnow._errors import ConvergenceError, InputError, UnsupportedLoadError
+from skisnow._errors import ConvergenceError, InputError, SolverStatus, UnsupportedLoadError
 from skisnow.constants import STANDARD_GRAVITY
 from skisnow.ski._skis import Ski
 
@@ -310,11 +310,19 @@ class BeamSolution:
         the node ``x[clamp]`` (the rigid motion is in ``translation`` and ``rotation``).
     translation, rotation
         rigid motion a [m], b [-] (Lagrange multipliers of the balances).
+    active
+        nodes of the final contact (active) set.
     iterations
-        pivoting iterations; residual: complementarity residual (dimensionless:
-        max over nodes of |h| on the contact set, of the violations of h >= 0 and r >= 0
-        and of |r h|, scaled by F and the free-camber range); converged: whether the
-        active-set iteration terminated with every sign condition met.
+        pivoting iterations.
+    residual
+        complementarity residual (dimensionless: max over nodes of |h| on the contact set,
+        of the violations of h >= 0 and r >= 0 and of |r h|, scaled by F and the free-camber
+        range).
+    status
+        how the active-set iteration ended (:class:`~skisnow.SolverStatus`): ``SUCCESSFUL``
+        when it terminated with every sign condition met, ``MAX_STEPS_REACHED`` when the
+        pivoting limit stopped it, ``NONFINITE`` when NaN/inf appeared. ``converged`` is
+        ``status.successful``.
     """
 
     ski: Ski
@@ -334,7 +342,12 @@ class BeamSolution:
     active: NDArray[np.bool_]
     iterations: int
     residual: float
-    converged: bool
+    status: SolverStatus
+
+    @property
+    def converged(self) -> bool:
+        """Whether the active-set iteration succeeded (``status.successful``)."""
+        return self.status.successful
 
     @property
     def n_elements(self) -> int:
@@ -529,8 +542,8 @@ def solve_beam(
     max_iterations
         pivoting iteration limit.
     raise_on_failure
-        raise :class:`ConvergenceError` (with ``.result``) if not converged;
-        otherwise return the result with ``converged=False``.
+        raise :class:`ConvergenceError` (with ``.result`` and ``.status``) unless the status
+        is ``SUCCESSFUL``; otherwise return the result with its status.
 
     Returns
     -------
@@ -541,8 +554,11 @@ def solve_beam(
     Raises
     ------
     InputError
-        invalid arguments; UnsupportedLoadError: the load is not on the ski (the ski
-        would tip over an end); ConvergenceError: see ``raise_on_failure``.
+        Invalid arguments.
+    UnsupportedLoadError
+        The load is not on the ski (the ski would tip over an end).
+    ConvergenceError
+        See ``raise_on_failure``.
     """
     mass = float(mass)
     load_position = float(load_position)
@@ -609,6 +625,13 @@ def solve_beam(
         )
     )
     contact = height <= tol_h
+    finite = bool(np.all(np.isfinite(height)) and np.all(np.isfinite(r)) and np.isfinite(residual))
+    if not finite:
+        status = SolverStatus.NONFINITE
+    elif converged:
+        status = SolverStatus.SUCCESSFUL
+    else:
+        status = SolverStatus.MAX_STEPS_REACHED
     result = BeamSolution(
         ski=ski,
         mass=mass,
@@ -617,7 +640,7 @@ def solve_beam(
         boot_distribution=boot_distribution,
         force=force,
         x=x,
-        height=np.maximum(height, 0.0) if converged else height,
+        height=np.maximum(height, 0.0) if status.successful else height,
         reactions=r,
         contact_intervals=_intervals(x, contact),
         deflection=w,
@@ -627,11 +650,11 @@ def solve_beam(
         active=active.copy(),
         iterations=it,
         residual=residual,
-        converged=converged,
+        status=status,
     )
-    if not converged and raise_on_failure:
+    if not status.successful and raise_on_failure:
         raise ConvergenceError(
-            f"beam contact did not converge in {max_iterations} pivots for ski {ski.name!r}, "
+            f"beam contact: {status.message} ({max_iterations} pivots) for ski {ski.name!r}, "
             f"m = {mass} kg, x_m = {load_position * 1e3:.1f} mm (residual {residual:.2e})",
             result=result,
         )
