@@ -146,3 +146,24 @@ def test_demo_refuses_a_corrupt_shipped_model_and_falls_back_only_when_absent(
         assert source == "beam" and "no shipped camber network" in note
     finally:
         model_io.shipped_network.cache_clear()
+
+
+def test_training_status_round_trips_and_a_foreign_status_is_refused(toy_network, tmp_path):
+    from skisnow import SolverStatus
+    from skisnow.ski import CamberNetwork
+
+    net = CamberNetwork(
+        architecture=toy_network.architecture,
+        scaling=toy_network.scaling,
+        domain=toy_network.domain,
+        members=toy_network.members,
+        metadata={**toy_network.metadata, "status": "max_steps_reached"},
+    )
+    save_network(net, tmp_path / "m")
+    assert load_network(tmp_path / "m").status is SolverStatus.MAX_STEPS_REACHED
+    assert toy_network.status is None  # metadata without a status: unknown, not "successful"
+    save_network(
+        CamberNetwork(**{**net.__dict__, "metadata": {"status": "fine"}}), tmp_path / "bad"
+    )
+    with pytest.raises(FileFormatError, match="status 'fine'"):
+        load_network(tmp_path / "bad")

@@ -135,3 +135,34 @@ def test_bad_bench_tables_are_rejected(small_bench):
     one = t[(t.mass_kg == t.mass_kg.iloc[0]) & (t.load_position_mm == t.load_position_mm.iloc[0])]
     with pytest.raises(InputError, match="at least 3"):
         train_network(one)
+
+
+def test_training_status_says_how_it_stopped(small_network, small_training_kwargs):
+    """The status follows the stopping rule: an LM phase that stopped before its step budget
+    met a criterion (early stopping or no improving step) and is SUCCESSFUL; one that used
+    every step is MAX_STEPS_REACHED."""
+    from skisnow import SolverStatus
+
+    md = small_network.metadata
+    budget = small_training_kwargs["lm_steps"]
+    expected = [
+        SolverStatus.SUCCESSFUL if taken < budget else SolverStatus.MAX_STEPS_REACHED
+        for taken in md["lm_steps_taken"]
+    ]
+    assert [SolverStatus(s) for s in md["member_status"]] == expected
+    assert small_network.status is expected[0]
+
+
+def test_adam_alone_reports_its_budget_and_raises_on_request(small_bench):
+    """Adam has a fixed step budget and no stopping criterion: MAX_STEPS_REACHED, and a
+    ConvergenceError carrying the network when the caller asks for one."""
+    from skisnow import ConvergenceError, SolverStatus
+    from skisnow.ski import CamberNetwork, train_network
+
+    kw = {"architecture": "2,3,3,3,2,2", "adam_steps": 50, "lm_steps": 0, "report_every": 50}
+    net = train_network(small_bench, seed=5, **kw)
+    assert net.status is SolverStatus.MAX_STEPS_REACHED
+    with pytest.raises(ConvergenceError, match="maximum number of iterations") as info:
+        train_network(small_bench, seed=5, raise_on_failure=True, **kw)
+    assert isinstance(info.value.result, CamberNetwork)
+    assert info.value.status is SolverStatus.MAX_STEPS_REACHED

@@ -28,7 +28,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from skisnow._errors import FileFormatError, InputError
+from skisnow._errors import FileFormatError, InputError, SolverStatus
 
 if TYPE_CHECKING:
     from skisnow.ski import BlockNetwork, CamberNetwork
@@ -240,6 +240,12 @@ def network_from_files(
         raise FileFormatError(f"{where}: invalid metadata ({exc})") from None
     if n_members < 1:
         raise FileFormatError(f"{where}: n_members must be >= 1, got {n_members}")
+    status = doc.get("metadata", {}).get("status")
+    if status is not None and status not in {s.value for s in SolverStatus}:
+        raise FileFormatError(
+            f"{where}: metadata status {status!r} is not one of "
+            f"{', '.join(s.value for s in SolverStatus)}"
+        )
     members = _members_from_arrays(arrays, architecture, n_members, where)
     reference = None
     ref_doc = doc.get("reference")

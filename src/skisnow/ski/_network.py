@@ -37,7 +37,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
-from skisnow._errors import DomainWarning, InputError
+from skisnow._errors import DomainWarning, InputError, SolverStatus
 
 __all__ = [
     "Architecture",
@@ -405,6 +405,14 @@ class CamberNetwork:
     def ski(self) -> str | None:
         """Name of the ski the network was trained on (from the bench table)."""
         return self.metadata.get("ski")
+
+    @property
+    def status(self) -> SolverStatus | None:
+        """How the training ended (:class:`~skisnow.SolverStatus`, from ``metadata["status"]``
+        written by :func:`skisnow.ski.train_network`); ``None`` for a network whose metadata
+        does not say (trained before the status was recorded)."""
+        value = self.metadata.get("status")
+        return None if value is None else SolverStatus(value)
 
     def _raw(
         self,

@@ -33,7 +33,7 @@ import optax
 import pandas as pd
 from jax.flatten_util import ravel_pytree
 
-from skisnow._errors import InputError
+from skisnow._errors import ConvergenceError, InputError, SolverStatus
 from skisnow.io import BENCH_COLUMNS, BenchData
 from skisnow.ski._network import (
     Architecture,
@@ -156,6 +156,7 @@ def train_network(
     ensemble: int = 1,
     progress: Callable[[TrainingProgress], None] | None = None,
     report_every: int = 50,
+    raise_on_failure: bool = False,
 ) -> CamberNetwork:
     """Train the block network h = f(x, m, x_m) (paper 000, eq. 1, Figure 3) on a bench table.
 
@@ -181,12 +182,28 @@ def train_network(
         reported by :meth:`CamberNetwork.predict_with_spread`.
     progress : called with a :class:`TrainingProgress` every ``report_every`` Adam steps and
         every LM step.
+    raise_on_failure : raise :class:`~skisnow.ConvergenceError` (carrying the network as
+        ``.result``) unless the training status is ``SUCCESSFUL``.
 
     Returns
     -------
     CamberNetwork whose ``metadata`` holds the ski, the bench sha256, the seed, the held-out
     conditions, the held-out errors in µm (mean, p95, max, mean where h < 0.2 mm) and the
-    training time in seconds.
+    training time in seconds, and the training ``status`` (see
+    :attr:`CamberNetwork.status`): ``SUCCESSFUL`` when every member stopped on a criterion
+    (early stopping on the held-out conditions, or Levenberg–Marquardt finding no step that
+    lowers the error, MATLAB's "maximum mu reached"), ``MAX_STEPS_REACHED`` when a member used
+    its whole step budget (``lm_steps``, or Adam alone when ``lm_steps=0``), ``NONFINITE``
+    when NaN/inf appeared (that member's last finite parameters are kept).
+
+    Raises
+    ------
+    FileFormatError
+        The table fails the bench validation (:func:`skisnow.io.validate_bench_table`).
+    InputError
+        Several skis, fewer than 3 load conditions, or invalid options.
+    ConvergenceError
+        See ``raise_on_failure``.
     """
     t0 = time.perf_counter()
     table = _bench_table(bench)
@@ -318,9 +335,11 @@ def train_network(
             "reference_profile": reference_profile,
         },
         "lm_steps_taken": [h_["lm_steps"] for h_ in histories],
+        "status": _worst([h_["status"] for h_ in histories]).value,
+        "member_status": [h_["status"].value for h_ in histories],
         "training_time_s": time.perf_counter() - t0,
     }
-    return CamberNetwork(
+    result = CamberNetwork(
         architecture=arch,
         scaling=scaling,
         domain=domain,
@@ -328,6 +347,19 @@ def train_network(
         reference=reference,
         metadata=metadata,
     )
+    status = result.status
+    if raise_on_failure and status is not None and not status.successful:
+        raise ConvergenceError(
+            f"training of the camber network for ski {metadata['ski']!r}: {status.message} "
+            f"(members: {', '.join(metadata['member_status'])})",
+            result=result,
+        )
+    return result
+
+
+def _worst(statuses: Sequence[SolverStatus]) -> SolverStatus:
+    """The status of an ensemble: the first member that did not succeed, else SUCCESSFUL."""
+    return next((s for s in statuses if not s.successful), SolverStatus.SUCCESSFUL)
 
 
 def _train_member(
@@ -347,6 +379,11 @@ def _train_member(
     member_index: int,
     n_members: int,
 ) -> tuple[BlockNetwork, dict[str, Any]]:
+    """Train one member: Adam, then Levenberg–Marquardt with early stopping.
+
+    Returns the member (the parameters with the lowest held-out error in the LM phase) and a
+    history ``{"lm_steps": steps taken, "status": SolverStatus}``.
+    """
     model = BlockNetwork(arch, key=key)
     theta0, unravel = ravel_pytree(model)
     hscale = scaling.height_scale
@@ -403,12 +440,17 @@ def _train_member(
 
         done = 0
         while done < adam_steps:
-            theta, opt_state, value = adam_chunk(theta, opt_state)
+            new_theta, opt_state, value = adam_chunk(theta, opt_state)
+            if not (np.isfinite(float(value)) and bool(jnp.all(jnp.isfinite(new_theta)))):
+                return unravel(theta), {"lm_steps": 0, "status": SolverStatus.NONFINITE}
+            theta = new_theta
             done += report_every
             report("adam", min(done, adam_steps), adam_steps, hscale * 1e6 * np.sqrt(value), theta)
 
     # ---- Levenberg–Marquardt with early stopping on held-out conditions
     lm_taken = 0
+    # without LM, Adam ran its fixed budget: no stopping criterion was met
+    status = SolverStatus.MAX_STEPS_REACHED
     if lm_steps > 0:
 
         def point_residual(th: jax.Array, *point: jax.Array) -> jax.Array:
@@ -422,15 +464,21 @@ def _train_member(
             theta, mu, rms, accepted = lm_step(theta, mu)
             lm_taken = step
             vm = float(val_errors(theta)[0])
+            if not (np.isfinite(vm) and np.isfinite(float(rms))):
+                status = SolverStatus.NONFINITE
+                break
             if vm < best_val:
                 best_val, best_theta, since = vm, theta, 0
             else:
                 since += 1
             report("lm", step, lm_steps, hscale * 1e6 * float(rms), theta)
             if not bool(accepted) or since >= patience:
+                # no step lowers the error (mu at its maximum) or early stopping on the
+                # held-out conditions: a stopping criterion of MATLAB's trainlm was met
+                status = SolverStatus.SUCCESSFUL
                 break
         theta = best_theta
-    return unravel(theta), {"lm_steps": lm_taken}
+    return unravel(theta), {"lm_steps": lm_taken, "status": status}
 
 
 def _make_lm_step(
