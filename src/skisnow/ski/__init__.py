@@ -1,16 +1,38 @@
 """The ski at the macro scale: beam model, shipped virtual skis, virtual bench, metrics, network.
 
-* :class:`Ski`, :func:`get_ski`, :data:`SHIPPED_SKIS` — virtual skis (EI(x), z0(x), kick zone).
-* :func:`solve_beam` → :class:`BeamSolution`, :func:`loaded_profile` — the free-floating
-  Euler–Bernoulli beam on the rigid bench stone (seed paper 000, §3.1, eq. 1 h = f(x, m, x_m)).
-* :func:`run_bench` — the virtual camber bench (the paper's load sequence) → ``BenchData``.
-* :func:`ski_metrics` and friends — practitioners' metrics (camber, wax pocket, closing load,
-  Breitschädel's stiffness and 50 µm contact lengths).
-* :func:`camber_profile` — THE function downstream code calls for a loaded profile (beam or
-  network).
-* The camber network (issue 4) is re-exported lazily (``CamberNetwork``, ``train_network``,
-  ``load_network``, ``save_network``, ``shipped_network``) so that ``import skisnow.ski`` does
-  not import JAX.
+After Kalliorinne et al., "Characterisation of the Contact between Cross-Country Skis and Snow:
+A Macro-Scale Investigation of the Apparent Contact", Lubricants 11 (2023), §2–3.1, and
+Breitschädel (2012, Procedia Eng. 34, 391–396) for the practitioners' metrics.
+
+Equation map (Kalliorinne et al. 2023 unless named):
+
+* eq. 1, h = f(x, m, x_m), the loaded camber profile on the bench:
+  :func:`camber_profile` (the one function downstream code calls), computed by the beam
+  (:func:`solve_beam` → :class:`BeamSolution`, :func:`loaded_profile`) or predicted by the
+  camber network (:class:`CamberNetwork`, :meth:`CamberNetwork.predict`).
+* Figure 3, the network's block architecture (load condition, ski collapse, ski camber,
+  prediction): :class:`BlockNetwork`, :class:`Architecture`; MATLAB's ``mapminmax``:
+  :class:`Scaling`; the trained range: :class:`Domain`; training with held-out load
+  conditions and Levenberg–Marquardt (Marquardt 1963): :func:`train_network`.
+* §2.1, the SkiSelector bench and its load sequence (m 5–130 kg, x_m 40–240 mm behind the
+  balance point): :func:`run_bench`, :func:`bench_grid` → :class:`~skisnow.io.BenchData`.
+* The ski itself (not in the paper: the ground truth that generates bench data): an
+  Euler–Bernoulli beam with stiffness EI(x) and free camber z0(x), free-floating on the rigid
+  stone — force and moment balance as in eq. 3 with the unilateral contact solved as an LCP
+  (Nocedal & Wright 2006, Alg. 16.3; Júdice & Pires 1994): :func:`solve_beam`; the shipped
+  virtual skis :data:`SHIPPED_SKIS`, :class:`Ski`, :func:`get_ski`; beam references for the
+  tests: :func:`cantilever_tip_deflection`, :func:`three_point_bending_deflection`,
+  :func:`beam_stiffness_matrix`, :func:`hermite_interpolate`.
+* Practitioners' metrics (Breitschädel 2012): camber height :func:`camber_height`, wax pocket
+  :func:`wax_pocket`, :func:`wax_pocket_length`, closing load :func:`closing_load`,
+  :func:`closing_load_from_bench`, stiffness :func:`ski_stiffness`, contact lengths with the
+  50 µm criterion :func:`contact_lengths`, :func:`contact_patches`; all of them for one ski:
+  :func:`ski_metrics` → :class:`SkiMetrics`.
+
+Eq. 2 (the equivalent modulus) and eq. 3 (the contact with force and moment balance) are
+:mod:`skisnow.contact`'s. The network's file format (``save_network``, ``load_network``,
+``shipped_network``) lives in :mod:`skisnow.io` and is re-exported here. The bench, the metrics
+(pandas) and the network (JAX) are imported on first use, so ``import skisnow.ski`` stays light.
 """
 
 from __future__ import annotations
