@@ -33,8 +33,8 @@ def test_elastic_limit_is_hertz() -> None:
 def test_rigid_plastic_limit_is_the_bearing_area() -> None:
     t = _bump()
     p, h = 2e5, 2e6
-    # E' = 100 GPa (50× ice on UHMWPE); the gap tolerance is tightened because with a stiff
-    # body a gap error δg moves the pressure by E'·δg/dx
+    # E' = 100 GPa (50× ice on UHMWPE), a stiff body: the tolerance is tightened as for the
+    # elastic–plastic rim every pressure step counts
     res = elastoplastic_contact(t, pressure=p, hardness=h, modulus=1e11, tol=1e-11)
     assert res.converged
     proj, _ = flat_plastic_area(t, pressure=p, hardness=h)
@@ -62,3 +62,19 @@ def test_complementarity_and_balance_on_a_grind() -> None:
     assert np.all(g[pr >= h] < 1e-6 * scale)  # plastic: overlap allowed, no gap
     assert res.fractional_area >= p / h  # elastic points carry less than H
     assert 1.9e9 < ice_base_modulus() < 1.95e9  # ice 9.5 GPa/0.31 on UHMWPE 840 MPa/0.46
+
+
+def test_status_and_the_partial_result_when_the_inner_solves_stop_early() -> None:
+    from skisnow import ConvergenceError, SolverStatus
+
+    t = _bump(n=32)
+    kw = dict(pressure=2e5, hardness=2e6, modulus=1e9)
+    res = elastoplastic_contact(t, max_iter=1, **kw)
+    assert not res.converged and res.status is SolverStatus.MAX_STEPS_REACHED
+    with pytest.raises(ConvergenceError) as info:
+        elastoplastic_contact(t, max_iter=1, raise_on_failure=True, **kw)
+    assert isinstance(info.value.result, type(res))
+    assert info.value.status is SolverStatus.MAX_STEPS_REACHED
+    ok = elastoplastic_contact(t, **kw)
+    assert ok.converged and ok.status is SolverStatus.SUCCESSFUL
+

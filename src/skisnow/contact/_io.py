@@ -45,7 +45,7 @@ def read_profile(path: str | Path, *, resample: bool = True) -> tuple[np.ndarray
         raise FileFormatError(f"{path}: no such profile file")
     try:
         table = pd.read_csv(path, comment="#")
-    except Exception as exc:  # pandas raises many kinds; report one clear error
+    except (ValueError, OSError) as exc:  # pandas' parser and empty-data errors are ValueErrors
         raise FileFormatError(f"{path}: cannot be read as CSV ({exc})") from None
     missing = [c for c in PROFILE_COLUMNS if c not in table.columns]
     if missing:

@@ -1,5 +1,5 @@
-"""Elastic–perfectly-plastic contact of a base topography with a flat ice surface (seed §3.5,
-Fig. 3).
+"""Elastic–perfectly-plastic contact of a base topography with a flat ice surface (Scherge et
+al. 2021, §3.5 and Fig. 3).
 
 Scherge et al. (2021) justify the purely plastic bearing model by comparing it with an
 elastic–plastic calculation (Pastewka et al. 2012) of the base against a FLAT ice surface of
@@ -9,18 +9,16 @@ Model: both bodies are elastic half-spaces with the equivalent modulus E' of the
 package's convention (2/E' = Σ(1 − ν²)/E, :func:`skisnow.contact.effective_modulus`; ice
 9.5 GPa/0.31 and UHMWPE 840 MPa/0.46 give E' = 1.93 GPa), the pressure is capped by the hardness
 (0 ≤ p ≤ H, perfectly plastic ice: where p = H the surfaces may overlap, the excess flows away
-plastically). With gap g = u − h + d (u = K∗p from the contact package's
-:func:`~skisnow.contact._kernels.surface_convolution`, non-periodic, zero-padded FFT; d the
-rigid approach):
+plastically). With gap g = u − h + d (u = K∗p from :func:`skisnow.contact.surface_convolution`,
+non-periodic, zero-padded FFT; d the rigid approach):
 
     0 < p < H ⇒ g = 0,   p = 0 ⇒ g ≥ 0,   p = H ⇒ g ≤ 0,   mean(p) = p_macro.
 
-Solver: for a given approach d, the Polonsky–Keer conjugate-gradient method (1999) under
-displacement control, extended to the box 0 ≤ p ≤ H (as in Sainsot & Lubrecht 2011): the CG
-runs on the free set 0 < p < H, iterates are projected on the box, points that violate their
-KKT sign (p = 0 with overlap, p = H with a gap) re-enter with a steepest-descent step and the
-conjugation restarts. Converged when max |g| on the free set and the sign violations are below
-``tol``·(max h − min h). The load is then met by Brent's method on d (mean p decreases
+Solver: for a given approach d, the contact package's Polonsky–Keer core
+(:func:`skisnow.contact.polonsky_keer`, Polonsky & Keer 1999) under displacement control with
+its hardness cap (the box 0 ≤ p ≤ H, as in Sainsot & Lubrecht 2011: the CG runs on the free cells
+and on the cells at H that the gap pushes back, iterates are projected on the box), converged
+when Σ|Δp|/Σp ≤ ``tol``. The load is then met by Brent's method on d (mean p decreases
 monotonically with d), each inner solve warm-started from the previous pressure. (A
 load-controlled PK with the cap stalled when almost every contact point is plastic, which is
 the normal case here: E'/H ≈ 100.)
@@ -36,8 +34,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from skisnow._errors import ConvergenceError, InputError
-from skisnow.contact._kernels import surface_convolution
+from skisnow._errors import ConvergenceError, InputError, SolverStatus
+from skisnow.contact import (
+    CellOperator,
+    effective_modulus,
+    polonsky_keer,
+    surface_convolution,
+)
 from skisnow.micro._bearing import slope_factor
 from skisnow.micro._ice import ICE, UHMWPE
 from skisnow.micro._topography import Topography, fill_missing, make_topography
@@ -52,7 +55,6 @@ __all__ = [
 
 def ice_base_modulus() -> float:
     """Equivalent modulus E' [Pa] of ice on UHMWPE (Table 2), contact-package convention."""
-    from skisnow.contact import effective_modulus
 
     return effective_modulus(ICE, UHMWPE)
 
@@ -63,7 +65,9 @@ class ElastoplasticResult:
 
     ``fractional_area`` is the projected contact fraction (p > 0), ``real_fractional_area``
     weights each contact pixel with √(1 + |∇h|²) (eq. 8), ``plastic_fraction`` is the share of
-    contact pixels at p = H.
+    contact pixels at p = H. ``residual`` is the last Σ|Δp|/Σp of the final inner solve and
+    ``status`` how that solve ended (:class:`~skisnow.SolverStatus`); ``converged`` also asks
+    that the mean pressure meets the load to 1e-6.
     """
 
     pressure: np.ndarray
@@ -76,6 +80,7 @@ class ElastoplasticResult:
     iterations: int
     residual: float
     converged: bool
+    status: SolverStatus
 
 
 def flat_plastic_area(topo: Topography, *, pressure: float, hardness: float) -> tuple[float, float]:
@@ -98,6 +103,7 @@ def elastoplastic_contact(
     modulus: float | None = None,
     tol: float = 1e-8,
     max_iter: int = 5000,
+    precondition: bool = False,
     raise_on_failure: bool = False,
 ) -> ElastoplasticResult:
     """Elastic–perfectly-plastic contact of ``topo`` with a flat (see the module docstring).
@@ -112,6 +118,22 @@ def elastoplastic_contact(
         Ice hardness H [Pa] (the cap of p); ``np.inf`` gives the purely elastic contact.
     modulus
         Equivalent modulus E' [Pa]; default :func:`ice_base_modulus`.
+    tol
+        Tolerance of every inner solve on Σ|Δp|/Σp (Polonsky & Keer 1999).
+    max_iter
+        Iteration limit of every inner solve.
+    precondition
+        Precondition the inner solves with the circulant inverse of the half-space (Vollebregt
+        2014). Off by default: on the grinds it saves a quarter of the iterations but costs an
+        FFT pair more per iteration (measured: 82 against 107 iterations, 210 against 158
+        FFTs on a 200² S3 map).
+    raise_on_failure
+        Raise :class:`~skisnow.ConvergenceError` (with ``.result``) when not converged.
+
+    Returns
+    -------
+    ElastoplasticResult
+        Pressure, gap, approach, areas, and the convergence report with its status.
     """
     if not (pressure > 0 and np.isfinite(pressure)):
         raise InputError(f"pressure must be positive [Pa], got {pressure}")
@@ -122,54 +144,24 @@ def elastoplastic_contact(
     nx, ny = h.shape
     conv = surface_convolution((nx, ny), topo.dx, topo.dy, modulus=e)
     scale = max(float(np.ptp(h)), 1e-300)
-    k_self = conv.self_influence
-    state = {"p": np.zeros_like(h), "iterations": 0, "residual": math.inf, "ok": True}
+    operator = CellOperator(conv)
+    inverse = CellOperator(conv.inverse()) if precondition else None
+    state: dict = {"p": np.zeros(h.size), "iterations": 0, "residual": math.inf, "ok": True}
+    relief = -h.ravel()  # the core's profile: g = −h + u + d
 
     def solve_at(d: float) -> float:
-        """Displacement-controlled PK with the cap; returns mean(p) - pressure."""
-        p = state["p"]
-        t = np.zeros_like(h)
-        g_old, delta = 1.0, 0.0
-        res = math.inf
-        for _ in range(max_iter):
-            state["iterations"] += 1
-            g = conv(p) - h + d
-            free = (p > 0) & (p < hardness)
-            # KKT sign violations of the bound points (overlap without pressure, gap at H)
-            viol = max(
-                float(np.max(-g[p <= 0], initial=0.0)),
-                float(np.max(g[p >= hardness], initial=0.0)),
-            )
-            gf = g[free]
-            res = max(float(np.max(np.abs(gf), initial=0.0)), viol) / scale
-            if res < tol:
-                break
-            big_g = float(gf @ gf)
-            beta = delta * big_g / g_old if g_old > 0 else 0.0
-            t[free] = gf + beta * t[free]
-            t[~free] = 0.0
-            g_old = big_g if big_g > 0 else 1.0
-            tau = 0.0
-            if free.any():
-                r = conv(t)
-                denom = float(r[free] @ t[free])
-                tau = float(gf @ t[free]) / denom if denom > 0 else 0.0
-                p[free] -= tau * t[free]
-            delta = 1.0
-            if (p < 0).any() or (p > hardness).any():
-                delta = 0.0
-            np.clip(p, 0.0, hardness, out=p)
-            enter = (p <= 0) & (g < 0)
-            leave = (p >= hardness) & (g > 0)
-            if enter.any() or leave.any():
-                delta = 0.0
-                step = tau if tau > 0 else 1.0 / k_self
-                p[enter] -= step * g[enter]
-                p[leave] -= step * g[leave]
-                np.clip(p, 0.0, hardness, out=p)
-        state["residual"] = res
-        state["ok"] = state["ok"] and res < tol
-        return float(p.mean()) - pressure
+        """Displacement-controlled PK with the cap; returns mean(p) − pressure."""
+        res = polonsky_keer(
+            operator, relief, p0=state["p"], control="displacement",
+            target=np.full(h.size, -d), hardness=hardness, preconditioner=inverse,
+            tol=tol, max_iter=max_iter,
+        )  # fmt: skip
+        state["p"] = res.pressure
+        state["iterations"] += res.iterations
+        state["residual"] = res.residual
+        state["ok"] = res.converged
+        state["status"] = res.status
+        return float(res.pressure.mean()) - pressure
 
     # bracket the rigid approach d: p = 0 everywhere for d >= max h; the purely plastic level
     # (N·p/H highest pixels at H) with the largest elastic displacement possible below it
@@ -189,9 +181,9 @@ def elastoplastic_contact(
         lo = hi - step
     approach = brentq(solve_at, lo, hi, xtol=1e-6 * tol * scale, rtol=1e-14, maxiter=200)
     solve_at(approach)
-    p = state["p"]
+    p = state["p"].reshape(h.shape)
     residual = float(state["residual"])
-    converged = bool(residual < tol and abs(p.mean() - pressure) <= 1e-6 * pressure)
+    converged = bool(state["ok"] and abs(p.mean() - pressure) <= 1e-6 * pressure)
     it = int(state["iterations"])
     w = slope_factor(make_topography(h, dx=topo.dx, dy=topo.dy))
     contact = p > 0
@@ -208,6 +200,7 @@ def elastoplastic_contact(
         iterations=it,
         residual=residual,
         converged=converged,
+        status=state["status"],
     )
     if not converged and raise_on_failure:
         raise ConvergenceError(

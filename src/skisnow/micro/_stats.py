@@ -130,7 +130,7 @@ def read_rank_table(path: str | Path, *, alpha: float = 0.05) -> RankTable:
         df = pd.read_csv(path)
     except FileNotFoundError as exc:
         raise FileFormatError(f"{path}: no such file") from exc
-    except Exception as exc:
+    except (ValueError, OSError) as exc:  # pandas' parser and empty-data errors are ValueErrors
         raise FileFormatError(f"{path}: not a readable CSV table ({exc})") from exc
     missing = [c for c in ("structure", "glide_time_s") if c not in df.columns]
     if missing:

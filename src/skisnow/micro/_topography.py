@@ -21,13 +21,33 @@ matrix orientation is the file's (row = axis 0), which SurfaceTopography's text 
 
 from __future__ import annotations
 
+import struct
 import warnings
+import xml.etree.ElementTree
+import zipfile
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 
 from skisnow._errors import FileFormatError, InputError
+
+#: what corrupt or truncated files raise deep inside SurfaceTopography's vendor readers (binary
+#: layouts read with struct/numpy, XML and zip containers, text headers)
+_VENDOR_READ_ERRORS = (
+    ValueError,  # numpy reshapes of short buffers, bad numbers, UnicodeDecodeError
+    OSError,
+    EOFError,
+    KeyError,
+    IndexError,
+    TypeError,
+    AttributeError,
+    RuntimeError,
+    ArithmeticError,
+    struct.error,
+    zipfile.BadZipFile,
+    xml.etree.ElementTree.ParseError,
+)
 
 __all__ = [
     "Topography",
@@ -163,7 +183,7 @@ def read_topography(
             arr = np.load(path, allow_pickle=False) if suffix == ".npy" else _load_text(path)
         except FileFormatError:
             raise
-        except Exception as exc:  # numpy raises ValueError/EOFError/OSError for bad files
+        except (ValueError, EOFError, OSError) as exc:  # what numpy raises for bad files
             raise FileFormatError(f"{name}: cannot read as {suffix} matrix ({exc})") from exc
         if arr.ndim != 2 or not np.issubdtype(arr.dtype, np.number):
             raise FileFormatError(f"{name}: expected a 2-D numeric matrix, got {arr.shape}")
@@ -214,7 +234,7 @@ def _read_with_surface_topography(path: Path, *, channel: int) -> Topography:
     except ReadFileError as exc:
         first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
         raise FileFormatError(f"{name}: unknown or unreadable topography format ({first})") from exc
-    except Exception as exc:  # corrupt or truncated files fail deep inside the vendor readers
+    except _VENDOR_READ_ERRORS as exc:  # corrupt or truncated files fail deep in the readers
         raise FileFormatError(
             f"{name}: corrupt or truncated topography file ({type(exc).__name__}: {exc})"
         ) from exc
