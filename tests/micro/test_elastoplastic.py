@@ -77,4 +77,3 @@ def test_status_and_the_partial_result_when_the_inner_solves_stop_early() -> Non
     assert info.value.status is SolverStatus.MAX_STEPS_REACHED
     ok = elastoplastic_contact(t, **kw)
     assert ok.converged and ok.status is SolverStatus.SUCCESSFUL
-
