@@ -128,3 +128,18 @@ def test_direct_columns_equal_the_fft(shape: tuple[int, ...]) -> None:
     out = np.zeros(shape)
     conv.add_columns(out, cells, values)
     assert np.allclose(out, conv(p.reshape(shape)), rtol=0, atol=1e-14 * np.abs(out).max())
+
+
+def test_one_default_worker_count_for_ffts_and_sweeps() -> None:
+    # one definition of "the cores this process may use": the FFT threads of the contact
+    # operators and the processes of a sweep's local cluster
+    import os
+
+    from skisnow._parallel import default_workers
+    from skisnow.sweep import default_workers as sweep_workers
+
+    assert sweep_workers is default_workers
+    conv = strip_convolution(16, 1e-3, 0.044, modulus=1e8)
+    assert conv.workers == default_workers() >= 1
+    if hasattr(os, "sched_getaffinity"):
+        assert default_workers() == len(os.sched_getaffinity(0))

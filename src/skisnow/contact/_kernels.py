@@ -28,13 +28,13 @@ Public names (stable; the micro area builds on them): :func:`surface_kernel`,
 from __future__ import annotations
 
 import functools
-import os
 from dataclasses import dataclass, field
 
 import numpy as np
 import scipy.fft as sfft
 
 from skisnow._errors import InputError
+from skisnow._parallel import default_workers
 
 __all__ = [
     "Convolution",
@@ -46,14 +46,6 @@ __all__ = [
     "surface_convolution",
     "surface_kernel",
 ]
-
-
-def default_workers() -> int:
-    """Threads for the FFTs: all cores the process may use (``os.sched_getaffinity``)."""
-    try:
-        return max(1, len(os.sched_getaffinity(0)))
-    except AttributeError:  # pragma: no cover - not on Linux
-        return max(1, os.cpu_count() or 1)
 
 
 def _positive(name: str, value: float) -> float:

@@ -9,7 +9,6 @@ race on the store.
 
 from __future__ import annotations
 
-import os
 import time
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
@@ -19,6 +18,7 @@ from typing import Any
 import numpy as np
 
 from skisnow._errors import InputError, SkisnowError
+from skisnow._parallel import default_workers
 from skisnow.sweep._grid import SweepSpec
 from skisnow.sweep._store import (
     SPEC_ATTR,
@@ -126,11 +126,6 @@ def prepare_store(
         return done_chunks(path, spec)
     create_store(path, spec, attrs=attrs)
     return set()
-
-
-def default_workers() -> int:
-    """Workers of the default local cluster: one per CPU core (processes, one thread each)."""
-    return max(1, os.cpu_count() or 1)
 
 
 #: Modules imported once by the fork server of local clusters, so that workers start warm.
