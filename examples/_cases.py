@@ -10,8 +10,7 @@ from pathlib import Path
 
 from skisnow.constants import MPA
 from skisnow.pipeline import solve_case
-from skisnow.plot._contact import plot_contact
-from skisnow.plot._style import save_figure
+from skisnow.plot import plot_contact, save_figure
 
 
 def parser(description: str) -> argparse.ArgumentParser:

@@ -18,8 +18,7 @@ if __name__ == "__main__":  # required: the Dask workers re-import this module
     p.add_argument("--skis", default="skate,classic")
     args = p.parse_args()
 
-    from skisnow.plot._maps import plot_load_share, plot_zone_map
-    from skisnow.plot._style import save_figure
+    from skisnow.plot import save_figure, sweep_figures
     from skisnow.sweep import SweepSpec, open_sweep, run_sweep
 
     if args.small:
@@ -37,14 +36,12 @@ if __name__ == "__main__":  # required: the Dask workers re-import this module
           f"{run.wall_time:.1f} s -> {store}")  # fmt: skip
     ds = open_sweep(store)
     formats = args.formats.split(",")
-    for ski in spec.skis:
-        for variable, fig_no in (("area_cm2", 8), ("mean_pressure_kpa", 9)):
-            fig = plot_zone_map(ds, variable=variable, ski=ski, load_position_mm=-120.0)
-            for f in save_figure(fig, args.out / f"fig{fig_no}_{ski}", formats=formats):
-                print(f"  wrote {f}")
-        fig = plot_load_share(ds, ski=ski, load_position_mm=-120.0)
-        for f in save_figure(fig, args.out / f"fig8_9_{ski}_load_share", formats=formats):
+    # Figure 8: {ski}_x-120mm_area, Figure 9: {ski}_x-120mm_mean_pressure, and the load share
+    kinds = ("area", "mean_pressure", "load_share")
+    for stem, fig in sweep_figures(ds, load_positions_mm=[-120.0], kinds=kinds).items():
+        for f in save_figure(fig, args.out / stem, formats=formats):
             print(f"  wrote {f}")
+    for ski in spec.skis:
         half = ds.sel(ski=ski, zone=["rear", "front"]).sel(mass_kg=30.0, method="nearest")
         print(f"{ski} at ~30 kg: area [cm²] rear/front over snows "
               f"{half.area_cm2.min().item():.1f}-{half.area_cm2.max().item():.1f}")  # fmt: skip

@@ -58,12 +58,12 @@ def test_json_document_and_fields_balance(capsys, tmp_path: Path) -> None:
 
 
 def test_profile_csv_gives_the_same_answer_as_the_ski(capsys, tmp_path: Path) -> None:
-    from skisnow.ski import camber_profile, get_ski
+    from skisnow.pipeline import stations
+    from skisnow.ski import camber_profile
 
-    ski = get_ski("skate")
-    edges = np.linspace(ski.x_tail, ski.x_tip, 513)
+    # the stations of the grid convention (skisnow.pipeline), written with 17 digits
     x, h = camber_profile(
-        "skate", mass=30.0, load_position=-0.12, x=0.5 * (edges[1:] + edges[:-1]), source="beam"
+        "skate", mass=30.0, load_position=-0.12, x=stations("skate", 512), source="beam"
     )
     csv = tmp_path / "profile.csv"
     pd.DataFrame({"x_mm": x * 1e3, "height_mm": h * 1e3}).to_csv(

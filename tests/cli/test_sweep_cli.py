@@ -125,7 +125,9 @@ def test_contact_part_of_the_demo_writes_every_figure(tmp_path: Path) -> None:
         PAPER_CASES
     )
     for ski in ("classic", "skate"):
-        for stem in (f"fig8_area_{ski}", f"fig9_pressure_{ski}", f"load_share_{ski}"):
+        # Figure 8 (area), Figure 9 (mean pressure), load share: skisnow.plot.sweep_figures
+        for kind in ("area", "mean_pressure", "load_share"):
+            stem = f"{ski}_x-120mm_{kind}"
             assert {f"{stem}.png", f"{stem}.svg"} <= names
         assert f"{ski}_report.html" in names
     assert all(c["converged"] for c in doc["cases"])

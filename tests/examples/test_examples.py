@@ -18,7 +18,8 @@ CASES = {
     "fig5_load.py": ["fig5_skate_30kg", "fig5_skate_60kg"],
     "fig6_position.py": ["fig6_classic_x-210mm", "fig6_classic_x-70mm"],
     "fig7_snow.py": ["fig7_classic_50MPa", "fig7_classic_200MPa"],
-    "fig8_9_maps.py": ["fig8_skate", "fig9_skate", "fig8_9_skate_load_share"],
+    "fig8_9_maps.py": ["skate_x-120mm_area", "skate_x-120mm_mean_pressure",
+                       "skate_x-120mm_load_share"],
 }  # fmt: skip
 
 

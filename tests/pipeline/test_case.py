@@ -2,7 +2,7 @@
 
 Balance laws and complementarity on the case, the ski's own width and kick zone, the grid
 convention, warm starts that do not change the answer, a precomputed profile
-that gives the identical case, and the same case through the sweep's chunk function.
+that gives the identical case (the doors of the CLI, the sweep and the report: test_doors.py).
 """
 
 from __future__ import annotations
@@ -128,26 +128,3 @@ def test_network_outside_its_domain_is_a_warning_on_the_case() -> None:
     assert any("outside its trained domain" in w for w in case.warnings)
     with pytest.warns(DomainWarning):  # the lower-level batched call warns as before
         loaded_profiles("skate", [200.0], -0.12, n_points=N)
-
-
-def test_a_one_point_sweep_gives_the_identical_numbers(tmp_path, skate: Case) -> None:
-    from skisnow.sweep import SweepSpec, open_sweep, run_sweep
-
-    spec = SweepSpec(
-        skis=("skate",), masses=(45.0,), load_positions=(-0.12,), snow_moduli=(100e6,),
-        n_points=N, profile_source="beam",
-    )  # fmt: skip
-    run_sweep(spec, tmp_path / "one.zarr", workers=0)
-    ds = open_sweep(tmp_path / "one.zarr").isel(ski=0, mass_kg=0, load_position_mm=0,
-                                                snow_modulus_mpa=0)  # fmt: skip
-    for name in ("rear", "middle", "front", "total"):
-        z = skate.zones[name]
-        row = ds.sel(zone=name)
-        assert float(row["length_mm"]) == z.length * 1e3
-        assert float(row["area_cm2"]) == z.area * 1e4
-        assert float(row["load_share"]) == z.load_share
-        assert float(row["breitschaedel_length_mm"]) == skate.breitschaedel[name].length * 1e3
-        if z.patches:
-            assert float(row["mean_pressure_kpa"]) == z.mean_pressure * 1e-3
-            assert float(row["max_pressure_kpa"]) == z.max_pressure * 1e-3
-    assert int(ds["iterations"]) == skate.solution.iterations

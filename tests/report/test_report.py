@@ -25,6 +25,7 @@ SKI = "skate"
 
 @pytest.fixture(scope="module")
 def report(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    from skisnow.pipeline import study_ski
     from skisnow.report import write_report
 
     out = tmp_path_factory.mktemp("report")
@@ -33,10 +34,11 @@ def report(tmp_path_factory: pytest.TempPathFactory) -> Path:
         snow_moduli=(20e6, 200e6, 400e6),
     )  # fmt: skip
     run_sweep(spec, out / "maps.zarr", chunk_function=hertz_chunk, workers=0)
-    return write_report(
-        SKI, out_dir=out, dataset=open_sweep(out / "maps.zarr"), profile_source="beam",
-        n_points=1024, snows=(100e6, 400e6),
+    study = study_ski(
+        SKI, dataset=open_sweep(out / "maps.zarr"), profile_source="beam", n_points=1024,
+        snows=(100e6, 400e6),
     )  # fmt: skip
+    return write_report(study, out)
 
 
 def test_report_is_self_contained(report: Path) -> None:

@@ -46,10 +46,11 @@ def test_zone_map_draws_the_data(dataset) -> None:
         plot_zone_map(dataset, ski="nope")
 
 
-def test_plot_sweep_writes_valid_png_and_svg(dataset, tmp_path: Path) -> None:
-    from skisnow.plot._maps import plot_sweep
+def test_sweep_figures_save_as_valid_png_and_svg(dataset, tmp_path: Path) -> None:
+    from skisnow.plot import save_figure, sweep_figures
 
-    paths = plot_sweep(dataset.sel(load_position_mm=[-70.0]), tmp_path)
+    figures = sweep_figures(dataset, load_positions_mm=[-70.0])
+    paths = [p for stem, fig in figures.items() for p in save_figure(fig, tmp_path / stem)]
     # 1 position × (area, mean pressure, length, load share) × (png, svg)
     assert len(paths) == 8 and all(p.stat().st_size > 1000 for p in paths)
     for p in paths:
@@ -60,3 +61,6 @@ def test_plot_sweep_writes_valid_png_and_svg(dataset, tmp_path: Path) -> None:
             assert root.tag.endswith("svg")
     names = {p.name for p in paths}
     assert "skate_x-70mm_area.svg" in names and "skate_x-70mm_load_share.png" in names
+    # a suffix picks the one format (the CLI's --figure contact.png)
+    fig = figures["skate_x-70mm_area"]
+    assert save_figure(fig, tmp_path / "one" / "map.svg") == [tmp_path / "one" / "map.svg"]

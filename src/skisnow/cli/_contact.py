@@ -1,4 +1,4 @@
-"""Commands for the apparent contact: contact (thin: parse, call skisnow.contact, render)."""
+"""Commands for the apparent contact: contact (thin: parse, call skisnow.pipeline, render)."""
 
 from __future__ import annotations
 
@@ -10,9 +10,9 @@ import typer
 
 from skisnow._errors import InputError
 from skisnow.cli._app import app
-from skisnow.cli._render import console, emit_json, print_table
-from skisnow.constants import STANDARD_GRAVITY
+from skisnow.cli._render import console, emit_json, err_console, print_table
 from skisnow.materials import BASE
+from skisnow.pipeline import DEFAULT_N_POINTS, MODELS, PROFILE_SOURCES
 
 __all__ = ["zone_record"]
 
@@ -60,7 +60,14 @@ def contact(
     model: Annotated[
         str, typer.Option("--model", help="strip (1D, fast) or surface (2D grid across).")
     ] = "strip",
-    width_mm: Annotated[float, typer.Option("--width-mm", help="Ski width in mm.")] = 44.0,
+    width_mm: Annotated[
+        float | None,
+        typer.Option(
+            "--width-mm",
+            help="With --profile: the ski's width in mm (default 44). With --ski the ski's own "
+            "width is used.",
+        ),
+    ] = None,
     profile_source: Annotated[
         str,
         typer.Option(
@@ -72,8 +79,12 @@ def contact(
         float, typer.Option("--base-modulus-mpa", help="Ski base modulus in MPa (eq. 2).")
     ] = BASE.modulus / 1e6,
     points: Annotated[
-        int, typer.Option("--points", help="Stations along the ski (with --ski).")
-    ] = 2048,
+        int,
+        typer.Option(
+            "--points",
+            help="With --ski: stations from tail to tip, both ends included (skisnow.pipeline).",
+        ),
+    ] = DEFAULT_N_POINTS,
     n_across: Annotated[
         int, typer.Option("--n-across", help="Cells across the width (surface model).")
     ] = 16,
@@ -91,74 +102,62 @@ def contact(
     ] = None,
 ) -> None:
     """Apparent contact of a loaded ski with elastic snow: force and moment balance (eq. 2–3)."""
-    from skisnow.contact import (
-        contact_zones,
-        effective_modulus,
-        snow,
-        solve_contact,
-    )
-    from skisnow.contact._io import read_profile, write_fields
+    from skisnow.contact import read_profile, write_fields
+    from skisnow.pipeline import solve_case
 
     if (ski is None) == (profile is None):
         raise InputError("give exactly one of --ski NAME or --profile FILE")
-    if model not in ("strip", "surface"):
-        raise InputError(f"--model must be strip or surface, got {model!r}")
-    if profile_source not in ("beam", "network"):
-        raise InputError(f"--profile-source must be beam or network, got {profile_source!r}")
+    if ski is not None and width_mm is not None:
+        raise InputError(
+            "--width-mm goes with --profile only: with --ski the ski's own width is used"
+        )
+    if profile is not None:
+        width_mm = 44.0 if width_mm is None else width_mm
     for name, value in (
         ("--mass-kg", mass_kg),
         ("--snow-modulus-mpa", snow_modulus_mpa),
         ("--width-mm", width_mm),
         ("--base-modulus-mpa", base_modulus_mpa),
     ):
-        if not np.isfinite(value) or value <= 0:
+        if value is not None and (not np.isfinite(value) or value <= 0):
             raise InputError(f"{name} must be a positive number, got {value:g}")
+    if model not in MODELS:
+        raise InputError(f"--model must be one of {', '.join(MODELS)}, got {model!r}")
+    if profile_source not in PROFILE_SOURCES:
+        raise InputError(
+            f"--profile-source must be one of {', '.join(PROFILE_SOURCES)}, got {profile_source!r}"
+        )
     if points < 16:
         raise InputError(f"--points must be at least 16, got {points}")
-    xm = load_position_mm * 1e-3
-    kick_zone = None
-    if ski is not None:
-        from skisnow.ski import camber_profile, get_ski
-
-        ski_obj = get_ski(ski)
-        kick_zone = ski_obj.kick_zone
-        edges = np.linspace(ski_obj.x_tail, ski_obj.x_tip, points + 1)
-        x, h = camber_profile(
-            ski,
-            mass=mass_kg,
-            load_position=xm,
-            x=0.5 * (edges[1:] + edges[:-1]),
-            source=profile_source,  # type: ignore[arg-type]
-        )
-    else:
-        assert profile is not None
-        x, h = read_profile(profile)
-    e_prime = effective_modulus(snow(snow_modulus_mpa * 1e6), base_modulus_mpa * 1e6)
-    sol = solve_contact(
-        x,
-        h,
-        load=mass_kg * STANDARD_GRAVITY,
-        load_position=xm,
-        modulus=e_prime,
-        model=model,  # type: ignore[arg-type]
-        width=width_mm * 1e-3,
+    case = solve_case(
+        ski,
+        mass=mass_kg,
+        load_position=load_position_mm * 1e-3,
+        snow_modulus=snow_modulus_mpa * 1e6,
+        model=model,
+        profile_source=profile_source,
+        n_points=points,
+        base=base_modulus_mpa * 1e6,
+        profile=None if profile is None else read_profile(profile),
+        width=None if width_mm is None else width_mm * 1e-3,
+        label=None if profile is None else Path(str(profile)).name,
         n_across=n_across,
     )
-    zones = contact_zones(sol, kick_zone=kick_zone)
+    sol, zones = case.solution, case.zones
+    for note in case.warnings:
+        err_console.print(f"[yellow]warning:[/] {note}")
     if fields_out is not None:
         write_fields(sol, fields_out)
     if figure is not None:
-        from skisnow.plot._contact import plot_contact
+        from skisnow.plot import plot_contact, save_figure
 
-        label = ski if ski is not None else Path(str(profile)).name
         fig = plot_contact(
             sol,
             zones,
-            title=f"{label}: {mass_kg:g} kg at x_m = {load_position_mm:g} mm, "
+            title=f"{case.label}: {mass_kg:g} kg at x_m = {load_position_mm:g} mm, "
             f"snow {snow_modulus_mpa:g} MPa",
         )
-        figure.parent.mkdir(parents=True, exist_ok=True)
-        fig.savefig(figure)
+        save_figure(fig, figure)
 
     doc: dict[str, Any] = {
         "ski": ski,
@@ -168,9 +167,9 @@ def contact(
         "mass_kg": mass_kg,
         "load_position_mm": load_position_mm,
         "snow_modulus_mpa": snow_modulus_mpa,
-        "equivalent_modulus_mpa": e_prime * 1e-6,
-        "width_mm": width_mm,
-        "points": int(x.size),
+        "equivalent_modulus_mpa": case.modulus * 1e-6,
+        "width_mm": case.width * 1e3,
+        "points": case.n_points,
     }
     for name in _ZONES:
         doc[name] = zone_record(zones[name])
@@ -187,6 +186,7 @@ def contact(
         "residual": sol.residual,
         "force_residual": sol.force_residual,
         "moment_residual": sol.moment_residual,
+        "warnings": list(case.warnings),
     }
     if json_out:
         emit_json(doc)
@@ -222,5 +222,5 @@ def contact(
     status = "converged" if sol.converged else "NOT converged"
     console.print(
         f"δ = {doc['translation_um']:.2f} µm, θ = {sol.rotation:.3e} rad, {status} in "
-        f"{sol.iterations} iterations (E' = {e_prime * 1e-6:.1f} MPa)"
+        f"{sol.iterations} iterations (E' = {case.modulus * 1e-6:.1f} MPa)"
     )

@@ -19,23 +19,18 @@ def run_ski_demo(out: Path, *, progress: bool = True) -> dict[str, Any]:
 
     Returns a document with the metrics and the files written.
     """
-    from skisnow.cli._ski import _progress_bar, metrics_documents
+    from skisnow.cli._render import progress_bar
+    from skisnow.cli._ski import metrics_documents
     from skisnow.io import write_bench
-    from skisnow.plot import plot_camber_profiles
-    from skisnow.plot._style import save_figure
+    from skisnow.plot import plot_camber_profiles, save_figure
     from skisnow.ski import SHIPPED_SKIS, run_bench
 
     out.mkdir(parents=True, exist_ok=True)
     files: list[str] = []
     docs = []
     for name in SHIPPED_SKIS:
-        with _progress_bar(f"bench {name}") as bar:
-            task = bar.add_task("bench", total=None)
-
-            def tick(done: int, total: int, bar: Any = bar, task: Any = task) -> None:
-                bar.update(task, completed=done, total=total)
-
-            data = run_bench(name, progress=tick if progress else None)
+        with progress_bar(f"bench {name}", disable=not progress) as bar:
+            data = run_bench(name, progress=bar)
         path = write_bench(data, out / f"bench_{name}.parquet")
         files.append(str(path))
         docs.extend(metrics_documents(str(path), body_mass_kg=65.0, load_position_mm=-80.0))
@@ -99,10 +94,9 @@ def run_contact_demo(
     """
     import numpy as np
 
-    from skisnow.pipeline import solve_case
-    from skisnow.plot._contact import plot_contact
-    from skisnow.plot._maps import plot_load_share, plot_zone_map
-    from skisnow.plot._style import save_figure
+    from skisnow.cli._render import progress_bar
+    from skisnow.pipeline import solve_case, study_ski
+    from skisnow.plot import plot_contact, save_figure, sweep_figures
     from skisnow.report import write_report
     from skisnow.ski import SHIPPED_SKIS
     from skisnow.sweep import SweepSpec, open_sweep, run_sweep
@@ -137,27 +131,17 @@ def run_contact_demo(
         n_points=n_points,
     )  # fmt: skip
     store = out / f"maps_{profile_source}.zarr"
-    if progress:
-        from skisnow.cli._sweep import _progress
-
-        with _progress("sweep (Figures 8-9)") as bar:
-            task = bar.add_task("chunks", total=len(spec.chunks()))
-            run = run_sweep(spec, store, workers=workers,
-                            on_progress=lambda d, t, k: bar.update(task, advance=1))  # fmt: skip
-    else:
-        run = run_sweep(spec, store, workers=workers)
+    with progress_bar("sweep (Figures 8-9)", disable=not progress, transient=False) as bar:
+        run = run_sweep(spec, store, workers=workers, on_progress=bar)
     ds = open_sweep(store)
     files.append(str(store))
+    # Figure 8: {ski}_x-120mm_area, Figure 9: {ski}_x-120mm_mean_pressure, and the load share
+    kinds = ("area", "mean_pressure", "load_share")
+    for stem, fig in sweep_figures(ds, load_positions_mm=[-120.0], kinds=kinds).items():
+        files += [str(p) for p in save_figure(fig, out / stem)]
     for ski in spec.skis:
-        for variable, name in (("area_cm2", "fig8_area"), ("mean_pressure_kpa", "fig9_pressure")):
-            fig = plot_zone_map(ds, variable=variable, ski=ski, load_position_mm=-120.0)
-            files += [str(p) for p in save_figure(fig, out / f"{name}_{ski}")]
-        fig = plot_load_share(ds, ski=ski, load_position_mm=-120.0)
-        files += [str(p) for p in save_figure(fig, out / f"load_share_{ski}")]
-        report = write_report(
-            ski, out_dir=out, dataset=ds, profile_source=profile_source, n_points=n_points
-        )
-        files.append(str(report))
+        study = study_ski(ski, dataset=ds, profile_source=profile_source, n_points=n_points)
+        files.append(str(write_report(study, out)))
     return {
         "profile_source": profile_source,
         "cases": cases,

@@ -89,11 +89,11 @@ def topo(
         "parameters": _roughness_record(r),
     }
     if figure is not None:
-        from skisnow.plot._micro import save_micro_figure, topography_figure
+        from skisnow.plot import save_figure, topography_figure
 
         doc["figures"] = [
             str(p)
-            for p in save_micro_figure(
+            for p in save_figure(
                 topography_figure(_prepare(t, cutoff_um, form), title=t.source), figure
             )
         ]
@@ -241,7 +241,7 @@ def bearing(
         "notes": notes,
     }
     if figure is not None:
-        from skisnow.plot._micro import bearing_figure, save_micro_figure
+        from skisnow.plot import bearing_figure, save_figure
 
         fig = bearing_figure(
             sweep.diameters,
@@ -250,7 +250,7 @@ def bearing(
             grain_density=micro.SEED_GRAIN_FIT,
             title=t.source,
         )
-        doc["figures"] = [str(p) for p in save_micro_figure(fig, figure)]
+        doc["figures"] = [str(p) for p in save_figure(fig, figure)]
     if json_out:
         emit_json(doc)
         return

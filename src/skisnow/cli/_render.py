@@ -73,3 +73,90 @@ def print_table(
                 cells.append(str(v))
         table.add_row(*cells)
     console.print(table)
+
+
+class ProgressBar:
+    """The one progress bar of the CLI (Rich, on stderr), called like a library progress callback.
+
+    ``bar(done, total)`` — the signature of the ``progress=`` callbacks of ``run_bench``,
+    ``bearing_sweep`` and ``run_sweep``'s ``on_progress`` (extra positional arguments are
+    ignored) — updates it; ``status=`` sets a trailing text and ``label=`` the description. The
+    bar appears at the first update (not before the work has started), and never with
+    ``disable=True`` (``--json``). Use it as a context manager::
+
+        with progress_bar("bench skate", disable=json_out) as bar:
+            run_bench(ski, progress=bar)
+    """
+
+    def __init__(
+        self,
+        label: str,
+        *,
+        total: float | None = None,
+        disable: bool = False,
+        transient: bool = True,
+    ) -> None:
+        self.label, self.total, self.disable, self.transient = label, total, disable, transient
+        self.completed: float = 0
+        self._bar: Any = None
+        self._task: Any = None
+
+    def __call__(
+        self,
+        done: float,
+        total: float | None = None,
+        *_: Any,
+        status: str | None = None,
+        label: str | None = None,
+    ) -> None:
+        self.completed = done
+        if total is not None:
+            self.total = total
+        if self.disable:
+            return
+        if self._bar is None:
+            from rich.progress import (
+                BarColumn,
+                MofNCompleteColumn,
+                Progress,
+                TextColumn,
+                TimeElapsedColumn,
+                TimeRemainingColumn,
+            )
+
+            self._bar = Progress(
+                TextColumn("[bold]{task.description}"),
+                BarColumn(),
+                MofNCompleteColumn(),
+                TimeElapsedColumn(),
+                TimeRemainingColumn(),
+                TextColumn("{task.fields[status]}"),
+                console=err_console,
+                transient=self.transient,
+            )
+            self._bar.start()
+            self._task = self._bar.add_task(self.label, total=self.total, status="")
+        fields: dict[str, Any] = {"completed": done, "total": self.total}
+        if status is not None:
+            fields["status"] = status
+        if label is not None:
+            fields["description"] = label
+        self._bar.update(self._task, **fields)
+
+    def close(self) -> None:
+        """Stop the bar (idempotent)."""
+        if self._bar is not None and self._bar.live.is_started:
+            self._bar.stop()
+
+    def __enter__(self) -> ProgressBar:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+
+def progress_bar(
+    label: str, *, total: float | None = None, disable: bool = False, transient: bool = True
+) -> ProgressBar:
+    """A :class:`ProgressBar` (the CLI's one progress helper)."""
+    return ProgressBar(label, total=total, disable=disable, transient=transient)

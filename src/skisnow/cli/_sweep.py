@@ -155,11 +155,16 @@ def plot(
     json_out: Annotated[bool, typer.Option("--json", help="Print one JSON document.")] = False,
 ) -> None:
     """Draw the maps of a sweep (area, mean pressure, length, load share vs mass per snow)."""
-    from skisnow.plot._maps import plot_sweep
+    from skisnow.plot import save_figure, sweep_figures
     from skisnow.sweep import open_sweep
 
     ds = open_sweep(store)
-    paths = plot_sweep(ds, out, formats=[f.strip() for f in formats.split(",") if f.strip()])
+    kinds = [f.strip() for f in formats.split(",") if f.strip()]
+    paths = [
+        p
+        for stem, fig in sweep_figures(ds).items()
+        for p in save_figure(fig, out / stem, formats=kinds)
+    ]
     if json_out:
         emit_json({"figures": [str(p) for p in paths]})
         return
@@ -198,12 +203,13 @@ def report(
     json_out: Annotated[bool, typer.Option("--json", help="Print one JSON document.")] = False,
 ) -> None:
     """Write one self-contained HTML report of a ski (metrics, zones at standard loads, maps)."""
+    from skisnow.pipeline import study_ski
     from skisnow.report import write_report
     from skisnow.sweep import parse_values
 
-    path = write_report(
+    study = study_ski(
         ski,
-        out_dir=out,
+        store=out / f"{ski}_maps_{profile_source}.zarr",
         body_mass=body_mass_kg,
         load_position=load_position_mm * 1e-3,
         workers=workers,
@@ -213,6 +219,7 @@ def report(
         map_moduli=tuple(parse_values(snow_modulus_mpa, name="--snow-modulus-mpa") * 1e6),
         n_points=n_points,
     )
+    path = write_report(study, out)
     if json_out:
         emit_json({"report": str(path)})
         return

@@ -4,7 +4,8 @@
 camber profile h = f(x, m, x_m) (eq. 1), the rigid ski pressed into elastic snow with force and
 moment balance (eq. 2–3), the contact zones and the Breitschädel (2012) 50 µm estimate. The
 sweep, ``skisnow contact``, the report, the demo and the examples call it, so the same inputs
-give the same numbers whichever door a user comes in by.
+give the same numbers whichever door a user comes in by. :func:`study_ski` computes what the
+report of a ski shows (metrics, the cases at the standard loads, the maps' sweep).
 
 Grid convention: ``n_points`` (default 4096) stations evenly spaced from the tail to the tip of
 the running surface, both ends included (:func:`stations`), each the centre of one contact cell.
@@ -22,15 +23,29 @@ from skisnow.pipeline._profiles import (
     resolve_ski,
     stations,
 )
+from skisnow.pipeline._study import (
+    MAP_MASSES,
+    MAP_MODULI,
+    STANDARD_SNOWS,
+    SkiStudy,
+    standard_cases,
+    study_ski,
+)
 
 __all__ = [
     "DEFAULT_N_POINTS",
     "DEFAULT_TOL",
+    "MAP_MASSES",
+    "MAP_MODULI",
     "MODELS",
     "PROFILE_SOURCES",
+    "STANDARD_SNOWS",
     "Case",
+    "SkiStudy",
     "loaded_profiles",
     "resolve_ski",
     "solve_case",
+    "standard_cases",
     "stations",
+    "study_ski",
 ]

@@ -1,16 +1,33 @@
 """Figures (Matplotlib, imported only here). Numerics never import this package.
 
-One house style (``_style``): no pyplot, fixed layout, PNG and SVG.
+Every function returns a Matplotlib ``Figure`` (no pyplot, one house style, fixed layout); one
+helper writes them, :func:`save_figure` (PNG and SVG by default, no creation dates), and
+:func:`figure_svg` gives the inline SVG of a page.
+
+* :func:`plot_contact` — profile, pressure and deformed snow of one case (Kalliorinne et al.
+  2023, Figures 4–7);
+* :func:`plot_zone_map`, :func:`plot_load_share`, :func:`sweep_figures` — maps of a sweep
+  (Figures 8–9);
+* :func:`plot_camber_profiles` — free camber of skis;
+* :func:`topography_figure`, :func:`bearing_figure` — the micro scale.
 """
 
 from skisnow.plot._contact import plot_contact
-from skisnow.plot._maps import plot_load_share, plot_sweep, plot_zone_map
+from skisnow.plot._maps import MAP_KINDS, plot_load_share, plot_zone_map, sweep_figures
+from skisnow.plot._micro import bearing_figure, topography_figure
 from skisnow.plot._profiles import plot_camber_profiles
+from skisnow.plot._style import FORMATS, figure_svg, save_figure
 
 __all__ = [
+    "FORMATS",
+    "MAP_KINDS",
+    "bearing_figure",
+    "figure_svg",
     "plot_camber_profiles",
     "plot_contact",
     "plot_load_share",
-    "plot_sweep",
     "plot_zone_map",
+    "save_figure",
+    "sweep_figures",
+    "topography_figure",
 ]

@@ -3,13 +3,12 @@ Figures 8–9), and load-share plots.
 
 All functions take the :class:`xarray.Dataset` of :func:`skisnow.sweep.open_sweep` (dims ``ski,
 mass_kg, load_position_mm, snow_modulus_mpa, zone``) and return a Matplotlib ``Figure``;
-:func:`plot_sweep` writes the standard set of files for a whole sweep.
+:func:`sweep_figures` draws the standard set for a whole sweep.
 """
 
 from __future__ import annotations
 
-from collections.abc import Iterable, Sequence
-from pathlib import Path
+from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
@@ -18,12 +17,10 @@ from matplotlib.figure import Figure
 from skisnow._errors import InputError
 from skisnow.plot._style import (
     COLORS,
-    FORMATS,
     ZONE_COLORS,
     modulus_colorbar,
     modulus_colors,
     new_figure,
-    save_figure,
 )
 
 #: Axis labels of the mapped variables (the paper's units: cm² and kPa).
@@ -145,23 +142,45 @@ def plot_load_share(
     return fig
 
 
-def plot_sweep(ds: Any, out_dir: str | Path, *, formats: Iterable[str] = FORMATS) -> list[Path]:
-    """Write the standard figures of a sweep for every ski and load position:
-    ``{ski}_x{pos}mm_area`` (Figure 8), ``_mean_pressure`` (Figure 9), ``_length``,
-    ``_load_share``. Returns the written paths."""
-    out_dir = Path(out_dir)
-    formats = tuple(formats)
-    written: list[Path] = []
-    for ski in [str(s) for s in ds["ski"].values]:
-        for pos in ds["load_position_mm"].values:
-            tag = f"{ski}_x{float(pos):g}mm"
-            for variable, name in (
-                ("area_cm2", "area"),
-                ("mean_pressure_kpa", "mean_pressure"),
-                ("length_mm", "length"),
-            ):
-                fig = plot_zone_map(ds, variable=variable, ski=ski, load_position_mm=float(pos))
-                written += save_figure(fig, out_dir / f"{tag}_{name}", formats=formats)
-            fig = plot_load_share(ds, ski=ski, load_position_mm=float(pos))
-            written += save_figure(fig, out_dir / f"{tag}_load_share", formats=formats)
-    return written
+#: The standard maps of a sweep: name -> variable (``load_share``: :func:`plot_load_share`).
+MAP_KINDS: dict[str, str] = {
+    "area": "area_cm2",  # Figure 8
+    "mean_pressure": "mean_pressure_kpa",  # Figure 9
+    "length": "length_mm",
+    "load_share": "load_share",
+}
+
+
+def sweep_figures(
+    ds: Any,
+    *,
+    skis: Sequence[str] | None = None,
+    load_positions_mm: Sequence[float] | None = None,
+    kinds: Sequence[str] = tuple(MAP_KINDS),
+) -> dict[str, Figure]:
+    """The standard maps of a sweep, ``{stem: Figure}`` with stems ``{ski}_x{pos}mm_{kind}``.
+
+    For every ski and load position of ``ds`` (or those given) and every kind of
+    :data:`MAP_KINDS` (or those given): ``area`` (Kalliorinne et al. 2023, Figure 8),
+    ``mean_pressure`` (Figure 9), ``length`` and ``load_share``. The one loop over a sweep's
+    maps: save them with :func:`skisnow.plot.save_figure` or embed them in a page.
+    """
+    bad = [k for k in kinds if k not in MAP_KINDS]
+    if bad:
+        raise InputError(f"kinds: {bad} not among {list(MAP_KINDS)}")
+    skis = [str(s) for s in ds["ski"].values] if skis is None else list(skis)
+    positions = (
+        [float(p) for p in ds["load_position_mm"].values]
+        if load_positions_mm is None
+        else [float(p) for p in load_positions_mm]
+    )
+    figures: dict[str, Figure] = {}
+    for ski in skis:
+        for pos in positions:
+            for kind in kinds:
+                if kind == "load_share":
+                    fig = plot_load_share(ds, ski=ski, load_position_mm=pos)
+                else:
+                    fig = plot_zone_map(ds, variable=MAP_KINDS[kind], ski=ski, load_position_mm=pos)
+                figures[f"{ski}_x{pos:g}mm_{kind}"] = fig
+    return figures

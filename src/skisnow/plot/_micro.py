@@ -2,15 +2,14 @@
 
 from __future__ import annotations
 
-from pathlib import Path
 from typing import Any
 
 import numpy as np
 from matplotlib.figure import Figure
 
-from skisnow.plot._style import new_figure, save_figure, style
+from skisnow.plot._style import new_figure, style
 
-__all__ = ["bearing_figure", "save_micro_figure", "topography_figure"]
+__all__ = ["bearing_figure", "topography_figure"]
 
 
 def topography_figure(topo: Any, *, title: str = "") -> Figure:
@@ -66,11 +65,3 @@ def bearing_figure(
         if title:
             a.set_title(title)
     return fig
-
-
-def save_micro_figure(fig: Figure, path: str | Path) -> list[Path]:
-    """Save to ``path`` (its suffix picks the format; no suffix: PNG and SVG)."""
-    path = Path(path)
-    if path.suffix:
-        return save_figure(fig, path.with_suffix(""), formats=(path.suffix.lstrip("."),))
-    return save_figure(fig, path)

@@ -130,16 +130,33 @@ def _metadata(fmt: str) -> dict[str, Any]:
     return {}
 
 
-def save_figure(fig: Figure, stem: str | Path, *, formats: Iterable[str] = FORMATS) -> list[Path]:
-    """Save ``fig`` as ``stem.png``, ``stem.svg`` (or the given formats); return the paths."""
-    stem = Path(stem)
+#: Formats :func:`save_figure` recognises in a file name's suffix.
+SUFFIX_FORMATS: tuple[str, ...] = ("png", "svg", "pdf")
+
+
+def save_figure(
+    fig: Figure, path: str | Path, *, formats: Iterable[str] | None = None
+) -> list[Path]:
+    """Save ``fig`` and return the paths written: the one helper every caller saves through.
+
+    ``path`` with a suffix of :data:`SUFFIX_FORMATS` (``contact.png``) and no ``formats``: that
+    one file. Otherwise ``path`` is a stem and one file per format is written (default PNG and
+    SVG: ``stem.png``, ``stem.svg``). Figures carry no creation date, so the same data give
+    byte-identical files.
+    """
+    path = Path(path)
+    suffix = path.suffix.lstrip(".").lower()
+    if formats is None and suffix in SUFFIX_FORMATS:
+        stem, formats = path.with_suffix(""), (suffix,)
+    else:
+        stem, formats = path, FORMATS if formats is None else tuple(formats)
     stem.parent.mkdir(parents=True, exist_ok=True)
     paths = []
     with style():
         for fmt in formats:
-            path = stem.with_name(f"{stem.name}.{fmt}")
-            fig.savefig(path, format=fmt, metadata=_metadata(fmt))
-            paths.append(path)
+            out = stem.with_name(f"{stem.name}.{fmt}")
+            fig.savefig(out, format=fmt, metadata=_metadata(fmt))
+            paths.append(out)
     return paths
 
 

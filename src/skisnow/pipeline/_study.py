@@ -1,0 +1,149 @@
+"""What the report of one ski shows, computed in one place: :func:`study_ski`.
+
+The practitioners' metrics of the virtual bench (Breitschädel 2012), the cases at the standard
+loads (half and full body weight on several snows, each a :func:`~skisnow.pipeline.solve_case`)
+and the maps over load and snow (a resumable sweep, Kalliorinne et al. 2023, Figures 8–9).
+:mod:`skisnow.report` only renders the :class:`SkiStudy` this returns.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+from skisnow._errors import InputError
+from skisnow.pipeline._case import Case, solve_case
+from skisnow.pipeline._profiles import DEFAULT_N_POINTS, resolve_ski
+
+#: Snows of the standard-load table [Pa]: soft new snow to hard old machine-made snow
+#: (Kalliorinne et al. 2023, §3.2: 50–350 MPa for machine-made snow after Lintzén & Edeskär).
+STANDARD_SNOWS: tuple[float, ...] = (50e6, 100e6, 200e6, 400e6)
+#: Default grid of the report's maps: masses [kg] and snow moduli [Pa].
+MAP_MASSES: tuple[float, ...] = tuple(float(m) for m in range(5, 131, 5))
+MAP_MODULI: tuple[float, ...] = tuple(float(e) * 1e6 for e in range(20, 401, 40))
+
+
+@dataclass(frozen=True, kw_only=True, eq=False)
+class SkiStudy:
+    """Everything the report of one ski shows (SI units).
+
+    Attributes
+    ----------
+    ski
+        The :class:`~skisnow.ski.Ski`.
+    body_mass, load_position
+        The skier's mass [kg] and the load position x_m [m].
+    metrics
+        :class:`~skisnow.ski.SkiMetrics` of the virtual bench (beam) at ``body_mass``.
+    cases
+        The standard loads: half then full body weight, each on every snow (ascending).
+    maps
+        The sweep over load and snow (:func:`skisnow.sweep.open_sweep`) holding the ski.
+    profile_source, n_points
+        Where the loaded profiles came from and the stations along the ski.
+    """
+
+    ski: Any
+    body_mass: float
+    load_position: float
+    metrics: Any = field(repr=False)
+    cases: tuple[Case, ...] = field(repr=False)
+    maps: Any = field(repr=False)
+    profile_source: str
+    n_points: int
+
+
+def standard_cases(
+    ski: Any,
+    *,
+    body_mass: float,
+    load_position: float,
+    snows: Sequence[float] = STANDARD_SNOWS,
+    profile_source: str = "network",
+    n_points: int = DEFAULT_N_POINTS,
+) -> tuple[Case, ...]:
+    """The cases at the standard loads: half and full body weight at ``load_position`` on every
+    snow of ``snows`` [Pa] (ascending), each solved by :func:`solve_case`."""
+    return tuple(
+        solve_case(
+            ski,
+            mass=m,
+            load_position=load_position,
+            snow_modulus=e,
+            profile_source=profile_source,
+            n_points=n_points,
+        )
+        for m in (0.5 * body_mass, body_mass)
+        for e in sorted(float(v) for v in snows)
+    )
+
+
+def study_ski(
+    ski: Any,
+    *,
+    body_mass: float = 60.0,
+    load_position: float = -0.12,
+    snows: Sequence[float] = STANDARD_SNOWS,
+    dataset: Any = None,
+    store: str | Path | None = None,
+    masses: Sequence[float] = MAP_MASSES,
+    map_moduli: Sequence[float] = MAP_MODULI,
+    profile_source: str = "network",
+    n_points: int = DEFAULT_N_POINTS,
+    workers: int | None = 0,
+    scheduler: str | None = None,
+) -> SkiStudy:
+    """Compute what the report of ``ski`` shows (see the module docstring).
+
+    Parameters
+    ----------
+    ski
+        A :class:`~skisnow.ski.Ski` or a name :func:`skisnow.ski.get_ski` accepts.
+    body_mass, load_position
+        The skier's mass [kg]; the load position x_m [m] of the cases and the maps.
+    snows
+        Snow moduli of the standard-load cases [Pa].
+    dataset
+        A sweep (:func:`skisnow.sweep.open_sweep`) that holds the ski; else the maps' sweep
+        (``masses`` [kg] × ``map_moduli`` [Pa] at ``load_position``) is run into ``store``
+        (resumable: a second study of the same ski reuses it) with ``workers`` or
+        ``scheduler`` (:func:`skisnow.sweep.run_sweep`).
+    profile_source, n_points
+        Loaded profiles of the cases and the maps (:func:`solve_case`).
+    """
+    from skisnow.ski import ski_metrics
+    from skisnow.sweep import SweepSpec, open_sweep, run_sweep
+
+    s = resolve_ski(ski)
+    if dataset is None:
+        if store is None:
+            raise InputError("study_ski: give a sweep (dataset=) or a Zarr store to run it into")
+        spec = SweepSpec(
+            skis=(s.name,),
+            masses=tuple(masses),
+            load_positions=(load_position,),
+            snow_moduli=tuple(map_moduli),
+            profile_source=profile_source,
+            n_points=n_points,
+        )
+        run_sweep(spec, store, workers=workers, scheduler=scheduler)
+        dataset = open_sweep(store)
+    return SkiStudy(
+        ski=s,
+        body_mass=float(body_mass),
+        load_position=float(load_position),
+        metrics=ski_metrics(s, body_mass=body_mass, load_position=load_position),
+        cases=standard_cases(
+            s,
+            body_mass=body_mass,
+            load_position=load_position,
+            snows=snows,
+            profile_source=profile_source,
+            n_points=n_points,
+        ),
+        maps=dataset,
+        profile_source=profile_source,
+        n_points=int(n_points),
+    )
