@@ -20,6 +20,7 @@ Residuals near contact (bench height below ``contact_height``) can be weighted u
 from __future__ import annotations
 
 import contextlib
+import dataclasses
 import hashlib
 import time
 from collections.abc import Callable, Sequence
@@ -339,14 +340,7 @@ def train_network(
         "member_status": [h_["status"].value for h_ in histories],
         "training_time_s": time.perf_counter() - t0,
     }
-    result = CamberNetwork(
-        architecture=arch,
-        scaling=scaling,
-        domain=domain,
-        members=tuple(members),
-        reference=reference,
-        metadata=metadata,
-    )
+    result = dataclasses.replace(net, metadata=metadata)
     status = result.status
     if raise_on_failure and status is not None and not status.successful:
         raise ConvergenceError(
