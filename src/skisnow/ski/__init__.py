@@ -47,33 +47,30 @@ from skisnow.ski._beam import (
     solve_beam,
     three_point_bending_deflection,
 )
+from skisnow.ski._metrics import (
+    BREITSCHAEDEL_THRESHOLD,
+    CLOSED_THRESHOLD,
+    camber_height,
+    contact_lengths,
+    contact_patches,
+    ski_stiffness,
+    wax_pocket,
+    wax_pocket_length,
+)
 from skisnow.ski._profiles import camber_profile
 from skisnow.ski._skis import SHIPPED_SKIS, Ski, get_ski
 
-# The bench and the metrics read and write tables (pandas), the network needs JAX: imported on
-# first use, so that the contact sweep's workers and the CLI start without them (pandas alone
-# measured 1.4 s of a 2.9 s cold import).
+# The bench and the metrics of one ski read and write tables (pandas), the network needs JAX:
+# imported on first use, so that the contact sweep's workers and the CLI start without them
+# (pandas alone measured 1.4 s of a 2.9 s cold import).
 _LAZY = {
     **dict.fromkeys(
         ("DEFAULT_LOAD_POSITIONS", "DEFAULT_MASSES", "bench_grid", "run_bench"),
         "skisnow.ski._bench",
     ),
     **dict.fromkeys(
-        (
-            "BREITSCHAEDEL_THRESHOLD",
-            "CLOSED_THRESHOLD",
-            "SkiMetrics",
-            "camber_height",
-            "closing_load",
-            "closing_load_from_bench",
-            "contact_lengths",
-            "contact_patches",
-            "ski_metrics",
-            "ski_stiffness",
-            "wax_pocket",
-            "wax_pocket_length",
-        ),
-        "skisnow.ski._metrics",
+        ("SkiMetrics", "closing_load", "closing_load_from_bench", "ski_metrics"),
+        "skisnow.ski._ski_metrics",
     ),
     **dict.fromkeys(
         ("Architecture", "BlockNetwork", "CamberNetwork", "Domain", "ReferenceProfile", "Scaling"),
