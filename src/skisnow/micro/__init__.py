@@ -16,8 +16,9 @@ of Cross Country Skis", Front. Mech. Eng. 7:659995 (2021):
   :data:`SEED_GRAIN_FIT`;
 * statistics (eq. 10): :func:`pearson`, :func:`critical_r`, :func:`rank_table`,
   :func:`read_rank_table`, :func:`seed_table4_comparison`;
-* elastic–perfectly-plastic flat-ice contact (seed Fig. 3): :func:`elastoplastic_contact`,
-  :func:`flat_plastic_area`.
+* elastic–perfectly-plastic flat-ice contact (Scherge et al. 2021, Fig. 3):
+  :func:`elastoplastic_contact` (on the contact package's Polonsky–Keer core with a hardness
+  cap), :func:`flat_plastic_area`.
 """
 
 from skisnow.micro import _scherge2021 as scherge2021
