@@ -40,11 +40,14 @@ with F); otherwise the lever-rule reactions on the two supports of the lower con
 that bracket the load centroid (the rigid-ski solution). Given only a previous contact set, block
 principal pivoting (Júdice & Pires 1994) is tried first for a few exchanges. Contact sets are a
 few short intervals, so a solve takes a handful to a few tens of pivots.
+
+Modules: the Hermite elements, assembly and load vectors are in :mod:`skisnow.ski._fem`, the LCP
+and its pivoting methods in :mod:`skisnow.ski._lcp`; this module sets up one load case, runs
+them and returns a :class:`BeamSolution` with its status.
 """
 
 from __future__ import annotations
 
-import functools
 from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import Literal
@@ -55,6 +58,16 @@ from scipy.linalg import solveh_banded
 
 from skisnow._errors import ConvergenceError, InputError, SolverStatus, UnsupportedLoadError
 from skisnow.constants import STANDARD_GRAVITY
+from skisnow.ski._fem import (
+    assemble_clamped,
+    beam_stiffness_matrix,
+    boot_load_vector,
+    cantilever_tip_deflection,
+    clamped_dofs,
+    hermite_interpolate,
+    three_point_bending_deflection,
+)
+from skisnow.ski._lcp import BeamLcp, LcpResult, lower_hull_bracket
 from skisnow.ski._skis import Ski
 
 __all__ = [
@@ -72,202 +85,6 @@ DEFAULT_BOOT_LENGTH: float = 0.10
 #: Default number of Hermite elements along the ski (≈ 5 mm elements on a 2 m ski).
 DEFAULT_N_ELEMENTS: int = 400
 
-_GAUSS4_X, _GAUSS4_W = np.polynomial.legendre.leggauss(4)
-_GAUSS4_X = 0.5 * (_GAUSS4_X + 1.0)  # on [0, 1]
-_GAUSS4_W = 0.5 * _GAUSS4_W
-
-
-# --------------------------------------------------------------------------- reference formulas
-
-
-def three_point_bending_deflection(force: float, span: float, stiffness: float) -> float:
-    """Mid-span deflection F·L³/(48·EI) [m] of a simply supported uniform beam, centre load."""
-    return force * span**3 / (48.0 * stiffness)
-
-
-def cantilever_tip_deflection(force: float, length: float, stiffness: float) -> float:
-    """Tip deflection F·L³/(3·EI) [m] of a uniform cantilever under a tip force."""
-    return force * length**3 / (3.0 * stiffness)
-
-
-# --------------------------------------------------------------------------- FE core
-
-
-def _shape(xi: NDArray[np.float64], le: NDArray[np.float64] | float) -> NDArray[np.float64]:
-    """Hermite cubic shape functions N1..N4 at local xi in [0, 1] (last axis: 4)."""
-    xi = np.asarray(xi, dtype=float)
-    le = np.asarray(le, dtype=float)
-    return np.stack(
-        [
-            1.0 - 3.0 * xi**2 + 2.0 * xi**3,
-            le * (xi - 2.0 * xi**2 + xi**3),
-            3.0 * xi**2 - 2.0 * xi**3,
-            le * (-(xi**2) + xi**3),
-        ],
-        axis=-1,
-    )
-
-
-def _element_stiffness(x_nodes: NDArray[np.float64], ei_at: object) -> NDArray[np.float64]:
-    """Element stiffness matrices (n_el, 4, 4) ∫ EI N''ᵀN'' dx with 4-point Gauss-Legendre."""
-    le = np.diff(x_nodes)[:, None]  # (n_el, 1)
-    xi = _GAUSS4_X[None, :]
-    xq = x_nodes[:-1, None] + le * xi
-    ei = np.asarray(ei_at(xq), dtype=float)  # type: ignore[operator]
-    b = np.stack(
-        [
-            (-6.0 + 12.0 * xi) / le**2,
-            (-4.0 + 6.0 * xi) / le,
-            (6.0 - 12.0 * xi) / le**2,
-            (-2.0 + 6.0 * xi) / le,
-        ],
-        axis=-1,
-    )  # (n_el, nq, 4)
-    w = (_GAUSS4_W[None, :] * le * ei)[..., None, None]
-    return np.sum(w * b[..., :, None] * b[..., None, :], axis=1)
-
-
-def beam_stiffness_matrix(x_nodes: ArrayLike, stiffness: ArrayLike | object) -> NDArray[np.float64]:
-    """Dense global stiffness matrix of a Hermite-cubic Euler–Bernoulli beam.
-
-    Parameters
-    ----------
-    x_nodes
-        increasing node positions [m].
-    stiffness
-        EI [N m²], either a constant or a callable EI(x) (vectorised).
-
-    Returns
-    -------
-    ndarray
-        (2n, 2n) matrix for the DOF order (w_0, θ_0, w_1, θ_1, ...), w upward [m], θ = dw/dx.
-    """
-    x = np.asarray(x_nodes, dtype=float)
-    ei_at = stiffness if callable(stiffness) else (lambda xx: np.full_like(xx, float(stiffness)))
-    ke = _element_stiffness(x, ei_at)
-    n = x.size
-    k = np.zeros((2 * n, 2 * n))
-    for e in range(n - 1):
-        d = slice(2 * e, 2 * e + 4)
-        k[d, d] += ke[e]
-    return k
-
-
-def hermite_interpolate(
-    x_nodes: ArrayLike, w: ArrayLike, theta: ArrayLike, x: ArrayLike
-) -> NDArray[np.float64]:
-    """Interpolate a beam field from nodal values w and slopes θ with Hermite shape functions."""
-    xn = np.asarray(x_nodes, dtype=float)
-    wn = np.asarray(w, dtype=float)
-    tn = np.asarray(theta, dtype=float)
-    xs = np.asarray(x, dtype=float)
-    e = np.clip(np.searchsorted(xn, xs, side="right") - 1, 0, xn.size - 2)
-    le = xn[e + 1] - xn[e]
-    xi = (xs - xn[e]) / le
-    nsh = _shape(xi, le)
-    return (
-        nsh[..., 0] * wn[e]
-        + nsh[..., 1] * tn[e]
-        + nsh[..., 2] * wn[e + 1]
-        + nsh[..., 3] * tn[e + 1]
-    )
-
-
-@dataclass(frozen=True)
-class _Model:
-    """Assembled clamped beam: nodes, banded clamped stiffness, flexibility of all DOFs."""
-
-    x: NDArray[np.float64]
-    z0: NDArray[np.float64]
-    clamp: int
-    ab: NDArray[np.float64]  # upper banded clamped stiffness (4, 2n)
-    flex_full: NDArray[np.float64]  # (2n, n): DOF response to unit upward force at node j
-    flex: NDArray[np.float64]  # (n, n): deflection rows of flex_full
-
-
-def _banded_upper(ke: NDArray[np.float64], n: int) -> NDArray[np.float64]:
-    ndof = 2 * n
-    ab = np.zeros((4, ndof))
-    for a in range(4):
-        for b in range(a, 4):
-            # global (i, j) = (2e + a, 2e + b), i <= j  -> ab[3 + i - j, j]
-            np.add.at(ab[3 + a - b], 2 * np.arange(n - 1) + b, ke[:, a, b])
-    return ab
-
-
-@functools.lru_cache(maxsize=16)
-def _assemble(ski: Ski, n_elements: int) -> _Model:
-    x = np.linspace(ski.x_tail, ski.x_tip, n_elements + 1)
-    n = x.size
-    ke = _element_stiffness(x, ski.stiffness)
-    ab = _banded_upper(ke, n)
-    clamp = int(np.argmin(np.abs(x)))
-    for dof in (2 * clamp, 2 * clamp + 1):
-        ab[:, dof] = 0.0  # column entries (i, dof), i <= dof
-        for j in range(dof, min(dof + 4, 2 * n)):
-            ab[3 + dof - j, j] = 0.0  # row entries (dof, j), j >= dof
-        ab[3, dof] = 1.0
-    rhs = np.zeros((2 * n, n))
-    rhs[2 * np.arange(n), np.arange(n)] = 1.0
-    rhs[2 * clamp, clamp] = 0.0
-    flex_full = solveh_banded(ab, rhs, check_finite=False)
-    flex = np.ascontiguousarray(flex_full[0::2, :])
-    flex = 0.5 * (flex + flex.T)  # symmetric up to round-off
-    for arr in (x, flex_full, flex):
-        arr.setflags(write=False)
-    z0 = ski.free_camber(x)
-    z0.setflags(write=False)
-    return _Model(x=x, z0=z0, clamp=clamp, ab=ab, flex_full=flex_full, flex=flex)
-
-
-def _boot_load_vector(
-    x: NDArray[np.float64],
-    force: float,
-    load_position: float,
-    boot_length: float,
-    distribution: str,
-) -> NDArray[np.float64]:
-    """Consistent nodal load vector (2n,) of the downward boot load (total force ``force``)."""
-    n = x.size
-    f = np.zeros(2 * n)
-    if distribution == "point" or boot_length == 0.0:
-        e = int(np.clip(np.searchsorted(x, load_position, side="right") - 1, 0, n - 2))
-        le = x[e + 1] - x[e]
-        nsh = _shape(np.array((load_position - x[e]) / le), le)
-        f[2 * e : 2 * e + 4] -= force * nsh
-        return f
-    lo, hi = load_position - 0.5 * boot_length, load_position + 0.5 * boot_length
-    q = force / boot_length
-    e0 = int(np.clip(np.searchsorted(x, lo, side="right") - 1, 0, n - 2))
-    e1 = int(np.clip(np.searchsorted(x, hi, side="left") - 1, 0, n - 2))
-    gx, gw = np.polynomial.legendre.leggauss(3)
-    for e in range(e0, e1 + 1):
-        a, b = max(lo, x[e]), min(hi, x[e + 1])
-        if b <= a:
-            continue
-        le = x[e + 1] - x[e]
-        xq = 0.5 * (a + b) + 0.5 * (b - a) * gx
-        nsh = _shape((xq - x[e]) / le, le)  # (3, 4)
-        f[2 * e : 2 * e + 4] -= q * 0.5 * (b - a) * (gw @ nsh)
-    return f
-
-
-def _lower_hull_bracket(x: NDArray[np.float64], g: NDArray[np.float64], xc: float) -> list[int]:
-    """The two vertices of the lower convex hull of (x, g) whose segment contains xc."""
-    hull: list[int] = []
-    for i in range(x.size):
-        while len(hull) >= 2:
-            i0, i1 = hull[-2], hull[-1]
-            cross = (x[i1] - x[i0]) * (g[i] - g[i0]) - (g[i1] - g[i0]) * (x[i] - x[i0])
-            if cross <= 0.0:
-                hull.pop()
-            else:
-                break
-        hull.append(i)
-    hx = x[hull]
-    k = int(np.clip(np.searchsorted(hx, xc, side="right") - 1, 0, len(hull) - 2))
-    return [hull[k], hull[k + 1]]
-
 
 def _intervals(x: NDArray[np.float64], mask: NDArray[np.bool_]) -> tuple[tuple[float, float], ...]:
     out = []
@@ -280,9 +97,6 @@ def _intervals(x: NDArray[np.float64], mask: NDArray[np.bool_]) -> tuple[tuple[f
     for s, e in zip(starts, ends, strict=True):
         out.append((float(x[s]), float(x[e])))
     return tuple(out)
-
-
-# --------------------------------------------------------------------------- solution
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -400,113 +214,6 @@ def _validate_load(
         )
 
 
-#: (converged, active set, reactions, gaps, translation a, rotation b, iterations)
-_LcpResult = tuple[
-    bool, NDArray[np.bool_], NDArray[np.float64], NDArray[np.float64], float, float, int
-]
-
-
-@dataclass(frozen=True)
-class _Lcp:
-    """The mixed LCP  h = g + a + b x + C r >= 0, r >= 0, r h = 0, Σ r = F, Σ r x = M."""
-
-    flex: NDArray[np.float64]
-    g: NDArray[np.float64]
-    x: NDArray[np.float64]
-    f_total: float
-    m_total: float
-    tol_r: float
-    tol_h: float
-
-    def solve_subset(self, idx: NDArray[np.intp]) -> tuple[NDArray[np.float64], float, float]:
-        """Reactions on ``idx`` (others zero) with h = 0 on idx and both balances."""
-        k = idx.size
-        kkt = np.zeros((k + 2, k + 2))
-        kkt[:k, :k] = self.flex[np.ix_(idx, idx)]
-        kkt[:k, k] = 1.0
-        kkt[:k, k + 1] = self.x[idx]
-        kkt[k, :k] = 1.0
-        kkt[k + 1, :k] = self.x[idx]
-        rhs = np.concatenate([-self.g[idx], [self.f_total, self.m_total]])
-        try:
-            sol = np.linalg.solve(kkt, rhs)
-        except np.linalg.LinAlgError:
-            sol = np.linalg.lstsq(kkt, rhs, rcond=None)[0]
-        return sol[:k], float(sol[k]), float(sol[k + 1])
-
-    def gap(
-        self, idx: NDArray[np.intp], r_idx: NDArray[np.float64], a: float, b: float
-    ) -> NDArray[np.float64]:
-        h = self.g + a + b * self.x + self.flex[:, idx] @ r_idx
-        h[idx] = 0.0
-        return h
-
-    def block_pivoting(self, active: NDArray[np.bool_], *, max_iterations: int) -> _LcpResult:
-        """Júdice–Pires block principal pivoting from ``active``; may stop unconverged."""
-        n = self.x.size
-        best, budget = n + 1, 3
-        r, h, a, b = np.zeros(n), self.g, 0.0, 0.0
-        for it in range(1, max_iterations + 1):
-            idx = np.flatnonzero(active)
-            r_idx, a, b = self.solve_subset(idx)
-            r = np.zeros(n)
-            r[idx] = r_idx
-            h = self.gap(idx, r_idx, a, b)
-            drop = active & (r < -self.tol_r)
-            add = ~active & (h < -self.tol_h)
-            nbad = int(drop.sum() + add.sum())
-            if nbad == 0:
-                return True, active, r, h, a, b, it
-            if nbad < best:
-                best, budget = nbad, 3
-            elif budget > 0:
-                budget -= 1
-            else:
-                break
-            new = active ^ (drop | add)
-            if new.sum() < 2:
-                break
-            active = new
-        return False, active, r, h, a, b, max_iterations
-
-    def primal_active_set(self, r0: NDArray[np.float64], max_iterations: int) -> _LcpResult:
-        """Primal active-set method for the convex QP min ½rᵀCr + gᵀr, r >= 0, balances.
-
-        Starts from a feasible r0 (r0 >= 0, both balances hold); every step keeps feasibility
-        and does not increase the objective (Nocedal & Wright 2006, Alg. 16.3), adding the most
-        violated gap or dropping blocking reactions one step at a time.
-        """
-        n = self.x.size
-        r = r0.copy()
-        free = r > 0
-        h, a, b = self.g, 0.0, 0.0
-        for it in range(1, max_iterations + 1):
-            idx = np.flatnonzero(free)
-            r_idx, a, b = self.solve_subset(idx)
-            if np.all(r_idx >= -self.tol_r):
-                r = np.zeros(n)
-                r[idx] = np.maximum(r_idx, 0.0)
-                h = self.gap(idx, r_idx, a, b)
-                j = int(np.argmin(np.where(free, np.inf, h)))
-                if free.all() or h[j] >= -self.tol_h:
-                    return True, free, r, h, a, b, it
-                free[j] = True
-            else:
-                d = r_idx - r[idx]
-                neg = d < 0
-                ratios = np.where(neg, r[idx] / np.where(neg, -d, 1.0), np.inf)
-                alpha = min(1.0, float(np.min(ratios)))
-                r_new = r[idx] + alpha * d
-                blocking = neg & (ratios <= alpha * (1 + 1e-12))
-                r_new[blocking] = 0.0
-                r = np.zeros(n)
-                r[idx] = r_new
-                free = r > 0
-                if free.sum() < 2:  # pragma: no cover - a feasible point needs two supports
-                    free[idx[np.argsort(-r_idx)[:2]]] = True
-        return False, free, r, h, a, b, max_iterations
-
-
 def solve_beam(
     ski: Ski,
     *,
@@ -566,13 +273,13 @@ def solve_beam(
     _validate_load(ski, mass, load_position, boot_length, boot_distribution)
     if not (isinstance(n_elements, int | np.integer) and n_elements >= 4):
         raise InputError(f"n_elements must be an integer >= 4, got {n_elements}")
-    model = _assemble(ski, int(n_elements))
+    model = assemble_clamped(ski, int(n_elements))
     x, flex = model.x, model.flex
     n = x.size
     force = mass * STANDARD_GRAVITY
 
-    f_boot = _boot_load_vector(x, force, load_position, boot_length, boot_distribution)
-    u_boot = solveh_banded(model.ab, _clamped(f_boot, model.clamp), check_finite=False)
+    f_boot = boot_load_vector(x, force, load_position, boot_length, boot_distribution)
+    u_boot = solveh_banded(model.ab, clamped_dofs(f_boot, model.clamp), check_finite=False)
     g = model.z0 + u_boot[0::2]
     # Balances consistent with the FE load vector (exact for the rigid modes of Hermite cubics):
     f_total = -float(np.sum(f_boot[0::2]))
@@ -597,18 +304,24 @@ def solve_beam(
         warm_active = np.zeros(n, dtype=bool)
         warm_active[np.asarray(list(warm_start), dtype=int)] = True
 
-    problem = _Lcp(flex=flex, g=g, x=x, f_total=f_total, m_total=m_total, tol_r=tol_r, tol_h=tol_h)
-    converged, active, r, a, b, it = False, np.zeros(n, dtype=bool), np.zeros(n), 0.0, 0.0, 0
+    problem = BeamLcp(
+        flex=flex, g=g, x=x, f_total=f_total, m_total=m_total, tol_r=tol_r, tol_h=tol_h
+    )
+    lcp: LcpResult | None = None
+    it = 0
     if warm_active is not None and warm_active.sum() >= 2 and warm_r is None:
-        converged, active, r, _h, a, b, it = problem.block_pivoting(warm_active, max_iterations=8)
-    if not converged:
+        lcp = problem.block_pivoting(warm_active, max_iterations=8)
+        it = lcp.iterations
+    if lcp is None or not lcp.converged:
         if warm_r is None or np.any(warm_r < 0):
             warm_r = np.zeros(n)
-            i, j = _lower_hull_bracket(x, g, xc)
+            i, j = lower_hull_bracket(x, g, xc)
             warm_r[i] = f_total * (x[j] - xc) / (x[j] - x[i])
             warm_r[j] = f_total * (xc - x[i]) / (x[j] - x[i])
-        converged, active, r, _h, a, b, it2 = problem.primal_active_set(warm_r, max_iterations)
-        it += it2
+        lcp = problem.primal_active_set(warm_r, max_iterations)
+        it += lcp.iterations
+    converged, active, r = lcp.converged, lcp.active, lcp.reactions
+    a, b = lcp.translation, lcp.rotation
 
     u = u_boot + model.flex_full @ r
     w, theta = u[0::2].copy(), u[1::2].copy()
@@ -659,12 +372,6 @@ def solve_beam(
             result=result,
         )
     return result
-
-
-def _clamped(f: NDArray[np.float64], clamp: int) -> NDArray[np.float64]:
-    out = f.copy()
-    out[2 * clamp : 2 * clamp + 2] = 0.0
-    return out
 
 
 def loaded_profile(
