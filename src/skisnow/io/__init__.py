@@ -3,13 +3,12 @@
 * :class:`BenchData`, :func:`read_bench`, :func:`write_bench` — camber-bench tables (CSV with a
   commented JSON metadata line, or Parquet with schema metadata), validated on read.
 * :func:`save_network`, :func:`load_network`, :func:`shipped_network` — the camber network's
-  model files (``PATH.npz`` weights + ``PATH.json`` metadata), re-exported lazily (they need
-  JAX); :func:`read_model_files` and friends move the arrays and the document safely.
+  model files (``PATH.npz`` weights + ``PATH.json`` metadata; JAX is imported only when a
+  network is built); :func:`read_model_files` and friends move the arrays and the JSON safely.
 """
 
 from __future__ import annotations
 
-from skisnow._lazy import lazy_getattr
 from skisnow.io._bench import (
     BENCH_COLUMNS,
     MIN_PROFILE_POINTS,
@@ -18,27 +17,19 @@ from skisnow.io._bench import (
     validate_bench_table,
     write_bench,
 )
-
-_LAZY = dict.fromkeys(
-    (
-        "MODEL_FORMAT",
-        "MODEL_FORMAT_VERSION",
-        "load_network",
-        "model_paths",
-        "network_arrays",
-        "network_from_files",
-        "parse_model_bytes",
-        "read_model_files",
-        "save_network",
-        "shipped_network",
-        "write_model_files",
-    ),
-    "skisnow.io._model",
+from skisnow.io._model import (
+    MODEL_FORMAT,
+    MODEL_FORMAT_VERSION,
+    load_network,
+    model_paths,
+    network_arrays,
+    network_from_files,
+    parse_model_bytes,
+    read_model_files,
+    save_network,
+    shipped_network,
+    write_model_files,
 )
-
-
-__getattr__ = lazy_getattr(__name__, _LAZY)
-
 
 __all__ = [
     "BENCH_COLUMNS",
