@@ -12,12 +12,8 @@ import skisnow.contact._candidates as cand_mod
 import skisnow.contact._solver as solver_mod
 from skisnow import InputError
 from skisnow.contact import effective_modulus, reference, snow, solve_contact
-from skisnow.contact._kernels import (
-    RestrictedOperator,
-    _toeplitz_rows,
-    line_convolution,
-    strip_convolution,
-)
+from skisnow.contact._kernels import line_convolution, strip_convolution
+from skisnow.contact._operators import RestrictedOperator, _toeplitz_rows
 
 
 def cells(n: int, lo: float, hi: float) -> np.ndarray:

@@ -27,9 +27,10 @@ Files: :func:`read_profile` (CSV ``x_mm,height_mm``), :func:`write_fields`,
 :func:`fields_table`.
 
 Where the code is: ``_problem`` (validation, grid, operator), ``_starts`` (warm, multilevel and
-rigid starts), ``_polonsky_keer`` (the iteration), ``_candidates`` (the 1D candidate-cell
-restriction), ``_solver`` (:func:`solve_contact`, a short pipeline over them), ``_kernels``
-(kernels and FFT convolution), ``_zones``, ``_materials``, ``_io``.
+rigid starts), ``_polonsky_keer`` (the iteration), ``_operators`` (what it needs of K),
+``_candidates`` (the 1D candidate-cell restriction), ``_solver`` (:func:`solve_contact`, a short
+pipeline over them), ``_kernels`` (kernels and FFT convolution), ``_zones``, ``_materials``,
+``_io``.
 """
 
 from skisnow.contact import reference
@@ -52,12 +53,8 @@ from skisnow.contact._materials import (
     effective_modulus,
     snow,
 )
-from skisnow.contact._polonsky_keer import (
-    CellOperator,
-    ComplianceOperator,
-    PolonskyKeerResult,
-    polonsky_keer,
-)
+from skisnow.contact._operators import CellOperator, ComplianceOperator
+from skisnow.contact._polonsky_keer import PolonskyKeerResult, polonsky_keer
 from skisnow.contact._solver import ContactSolution, solve_contact
 from skisnow.contact._zones import (
     BREITSCHAEDEL_THRESHOLD,

@@ -3,7 +3,7 @@
 A ski touches the snow over a few hundred of its 4096 stations. The candidates S are the cells of
 the start's support plus those whose gap, estimated from the start (u₀ = K p₀, the rigid plane
 fitted on the support), is below a margin of the largest displacement. On S the iteration runs
-with the restricted operator ``K_SS`` (:class:`~skisnow.contact._kernels.RestrictedOperator`,
+with the restricted operator ``K_SS`` (:class:`~skisnow.contact._operators.RestrictedOperator`,
 a dense Toeplitz block up to 800 cells) and the preconditioner restricted the same way. Since
 p = 0 off S, its iterates are those of the whole-grid iteration as long as no cell off S would
 enter the contact; the gap is then checked on the whole grid (one FFT) and any missed cell added,
@@ -15,12 +15,11 @@ from __future__ import annotations
 import numpy as np
 
 from skisnow._errors import SolverStatus
-from skisnow.contact._kernels import Convolution, RestrictedOperator
+from skisnow.contact._kernels import Convolution
+from skisnow.contact._operators import CellOperator, RestrictedOperator, circulant_preconditioner
 from skisnow.contact._polonsky_keer import (
-    CellOperator,
     Control,
     PolonskyKeerResult,
-    circulant_preconditioner,
     plane_fit,
     polonsky_keer,
     restore,

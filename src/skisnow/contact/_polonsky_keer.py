@@ -40,9 +40,10 @@ never looks inside the operator. It needs a :class:`ComplianceOperator`:
   without it, a full product is applied);
 
 and, optionally, a ``preconditioner`` with the same call signature (an approximate K⁻¹).
-:class:`CellOperator` adapts a :class:`~skisnow.contact.Convolution` (any grid, optionally a
+:class:`~skisnow.contact.CellOperator` (in ``_operators``) adapts a
+:class:`~skisnow.contact.Convolution` (any grid, optionally a
 subset of its cells, e.g. a ski's footprint); the candidate-cell restriction
-(:class:`~skisnow.contact._kernels.RestrictedOperator`) is another implementation. A coupled
+(:class:`~skisnow.contact._operators.RestrictedOperator`) is another implementation. A coupled
 operator — e.g. the flexible ski, K = K_snow + K_beam (the half-space compliance plus the beam's
 flexibility at the contact cells, same force and moment balance) — is a third: wrap it in an
 object with ``__call__`` and ``self_influence`` (and the snow's circulant inverse as a
@@ -52,21 +53,15 @@ preconditioner, still a good one when K_beam is smooth) and call :func:`polonsky
 
 from __future__ import annotations
 
-import functools
 from dataclasses import dataclass, field
-from typing import Literal, Protocol, runtime_checkable
+from typing import Literal
 
 import numpy as np
 
 from skisnow._errors import InputError, SolverStatus
-from skisnow.contact._kernels import Convolution
+from skisnow.contact._operators import ComplianceOperator
 
-__all__ = [
-    "CellOperator",
-    "ComplianceOperator",
-    "PolonskyKeerResult",
-    "polonsky_keer",
-]
+__all__ = ["PolonskyKeerResult", "plane_fit", "polonsky_keer", "restore"]
 
 Control = Literal["moment", "load", "displacement"]
 
@@ -74,72 +69,6 @@ Control = Literal["moment", "load", "displacement"]
 _DIRECT_COLUMNS = 12
 #: recompute u = K p from scratch every this many steps (round-off drift of the updates)
 _REFRESH = 25
-
-
-@runtime_checkable
-class ComplianceOperator(Protocol):
-    """What :func:`polonsky_keer` needs of an operator: u = K p on flat cell vectors."""
-
-    @property
-    def self_influence(self) -> float:
-        """The diagonal K(0) [m/Pa]."""
-        ...
-
-    def __call__(self, v: np.ndarray) -> np.ndarray:
-        """``K v`` for a flat pressure vector ``v`` [Pa] → displacements [m], same shape."""
-        ...
-
-
-@dataclass(frozen=True, eq=False)
-class CellOperator:
-    """A :class:`~skisnow.contact.Convolution` seen as an operator on the flat vector of its
-    grid's cells, or of the subset ``cells`` (flat indices; the others carry no pressure).
-
-    Implements :class:`ComplianceOperator` (with ``add_columns``); ``CellOperator(conv.inverse(),
-    cells)`` is the matching preconditioner.
-    """
-
-    conv: Convolution
-    cells: np.ndarray | None = None
-    _grid: np.ndarray = field(init=False, repr=False)
-
-    def __post_init__(self) -> None:
-        if self.cells is not None:
-            object.__setattr__(self, "_grid", np.zeros(int(np.prod(self.conv.shape))))
-
-    @property
-    def self_influence(self) -> float:
-        """K(0) [m/Pa]."""
-        return self.conv.self_influence
-
-    def __call__(self, v: np.ndarray) -> np.ndarray:
-        """``K v`` on the cells."""
-        shape = self.conv.shape
-        if self.cells is None:
-            return self.conv(v.reshape(shape)).ravel()
-        self._grid[self.cells] = v  # the other cells stay zero
-        return self.conv(self._grid.reshape(shape)).ravel()[self.cells]
-
-    def add_columns(self, out: np.ndarray, index: np.ndarray, values: np.ndarray) -> None:
-        """``out += K[:, index] @ values`` (``index`` into the cells) by kernel columns."""
-        shape = self.conv.shape
-        if self.cells is None:
-            self.conv.add_columns(out.reshape(shape), index, values)
-            return
-        full = np.zeros(shape)
-        self.conv.add_columns(full, self.cells[index], values)
-        out += full.ravel()[self.cells]
-
-
-@functools.lru_cache(maxsize=8)
-def circulant_preconditioner(conv: Convolution) -> Convolution:
-    """The circulant inverse of a (cached) operator, cached with it (Vollebregt 2014).
-
-    On large grids (≥ 2¹⁶ cells) it runs in single precision: its FFTs are ~40 % cheaper and a
-    preconditioner only steers the iteration (the converged field is the same to the tolerance;
-    measured 7e-11 rel-L2 on the 512² Hertz problem at tol 1e-10).
-    """
-    return conv.inverse(single=int(np.prod(conv.shape)) >= 2**16)
 
 
 @dataclass(frozen=True, kw_only=True, eq=False)

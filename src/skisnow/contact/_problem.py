@@ -28,7 +28,7 @@ from skisnow.contact._kernels import (
     strip_convolution,
     surface_convolution,
 )
-from skisnow.contact._polonsky_keer import CellOperator
+from skisnow.contact._operators import CellOperator
 
 __all__ = ["DEFAULT_WIDTH", "ContactProblem", "build_problem"]
 

@@ -43,13 +43,8 @@ from numpy.typing import ArrayLike
 
 from skisnow._errors import ConvergenceError, InputError, SolverStatus, UnsupportedLoadError
 from skisnow.contact._candidates import CANDIDATE_MIN_CELLS, solve_on_candidates
-from skisnow.contact._polonsky_keer import (
-    CellOperator,
-    PolonskyKeerResult,
-    _dot,
-    circulant_preconditioner,
-    polonsky_keer,
-)
+from skisnow.contact._operators import CellOperator, circulant_preconditioner
+from skisnow.contact._polonsky_keer import PolonskyKeerResult, _dot, polonsky_keer
 from skisnow.contact._problem import ContactProblem, Control, Model, build_problem
 from skisnow.contact._starts import starting_pressure
 

@@ -1,8 +1,8 @@
 """The bearing model of plastic ice grains on a ski-base topography (Scherge et al. 2021, eq. 5–9).
 
 Model (Scherge et al. 2021 §3.7, with the symbols lost in its typesetting reconstructed). A
-loose, rounded ice grain is a sphere of diameter D = 2R pressed against the base topography h(x,
-y) [m] (heights pointing out of the base, toward the snow). At a raster position (x0, y0) the
+loose, rounded ice grain is a sphere of diameter D = 2R pressed against the base topography
+h(x, y) [m] (heights pointing out of the base, toward the snow). At a raster position (x0, y0) the
 sphere's centre is lowered along the normal until it first touches the base — *it settles into
 the valley under it*: the first-contact height of the sphere's lowest point is
 
