@@ -487,17 +487,23 @@ class CamberNetwork:
 
         Parameters
         ----------
-        x : positions along the ski [m], 1-D, any resolution.
-        mass, load_position : the load condition(s): mass [kg] and position [m] from the balance
+        x
+            Positions along the ski [m], 1-D, any resolution.
+        mass, load_position
+            The load condition(s): mass [kg] and position [m] from the balance
             point (positive toward the tip); scalars or 1-D arrays broadcast to k load cases.
-        on_domain_error : outside the trained (m, x_m, x) range: ``'warn'`` (a
+        on_domain_error
+            Outside the trained (m, x_m, x) range: ``'warn'`` (a
             :class:`~skisnow.DomainWarning`), ``'raise'`` (:class:`~skisnow.InputError`) or
             ``'ignore'``.
-        clip : clip at 0 (the gap to the bench plane is never negative).
+        clip
+            Clip at 0 (the gap to the bench plane is never negative).
 
         Returns
         -------
-        ``(n,)`` for a scalar load condition, ``(k, n)`` for k load cases (the ensemble mean).
+        ndarray
+            h [m], the ensemble mean: ``(n,)`` for a scalar load condition, ``(k, n)`` for k
+            load cases.
         """
         h, scalar = self._raw(x, mass, load_position, on_domain_error)
         h = h.mean(axis=0)

@@ -163,39 +163,52 @@ def train_network(
 
     Parameters
     ----------
-    bench : :class:`skisnow.io.BenchData` (or its ``table``): columns ``ski, mass_kg,
+    bench
+        :class:`skisnow.io.BenchData` (or its ``table``): columns ``ski, mass_kg,
         load_position_mm, x_mm, height_mm``, one ski, several load conditions.
-    seed : seeds the validation split, the initial weights and the LM subsample.
-    architecture : widths (:class:`Architecture`, six integers or ``"6,16,16,16,12,12"``).
-    validation_fraction : share of the load conditions held out (whole profiles).
-    adam_steps, adam_learning_rate, adam_points : the first-order phase (full batch of at most
+    seed
+        Seeds the validation split, the initial weights and the LM subsample.
+    architecture
+        Widths (:class:`Architecture`, six integers or ``"6,16,16,16,12,12"``).
+    validation_fraction
+        Share of the load conditions held out (whole profiles).
+    adam_steps, adam_learning_rate, adam_points
+        The first-order phase (full batch of at most
         ``adam_points`` training points, evenly thinned; cosine-decayed learning rate).
-    lm_steps, lm_points : the Levenberg–Marquardt phase: at most ``lm_steps`` steps on at most
+    lm_steps, lm_points
+        The Levenberg–Marquardt phase: at most ``lm_steps`` steps on at most
         ``lm_points`` training points (the Jacobian is ``lm_points × n_parameters`` float64).
-    patience : stop LM after this many steps without a better held-out mean error.
-    contact_height, contact_weight : residuals where the bench height is below
+    patience
+        Stop LM after this many steps without a better held-out mean error.
+    contact_height, contact_weight
+        Residuals where the bench height is below
         ``contact_height`` [m] are weighted by ``contact_weight`` (1 = plain least squares;
         default 4, i.e. twice the residual, as the shipped networks were trained).
-    reference_profile : learn ``h - h_ref(x)`` with ``h_ref`` the mean training profile (an
+    reference_profile
+        Learn ``h - h_ref(x)`` with ``h_ref`` the mean training profile (an
         x-dependent output scaling, see :class:`ReferenceProfile`); ``False`` = the paper's
         plain network on ``h``.
-    ensemble : number of members (different initial weights); the spread of their predictions is
+    ensemble
+        Number of members (different initial weights); the spread of their predictions is
         reported by :meth:`CamberNetwork.predict_with_spread`.
-    progress : called with a :class:`TrainingProgress` every ``report_every`` Adam steps and
+    progress
+        Called with a :class:`TrainingProgress` every ``report_every`` Adam steps and
         every LM step.
-    raise_on_failure : raise :class:`~skisnow.ConvergenceError` (carrying the network as
+    raise_on_failure
+        Raise :class:`~skisnow.ConvergenceError` (carrying the network as
         ``.result``) unless the training status is ``SUCCESSFUL``.
 
     Returns
     -------
-    CamberNetwork whose ``metadata`` holds the ski, the bench sha256, the seed, the held-out
-    conditions, the held-out errors in µm (mean, p95, max, mean where h < 0.2 mm) and the
-    training time in seconds, and the training ``status`` (see
-    :attr:`CamberNetwork.status`): ``SUCCESSFUL`` when every member stopped on a criterion
-    (early stopping on the held-out conditions, or Levenberg–Marquardt finding no step that
-    lowers the error, MATLAB's "maximum mu reached"), ``MAX_STEPS_REACHED`` when a member used
-    its whole step budget (``lm_steps``, or Adam alone when ``lm_steps=0``), ``NONFINITE``
-    when NaN/inf appeared (that member's last finite parameters are kept).
+    CamberNetwork
+        Its ``metadata`` holds the ski, the bench sha256, the seed, the held-out conditions,
+        the held-out errors in µm (mean, p95, max, mean where h < 0.2 mm), the training time in
+        seconds, and the training ``status`` (see :attr:`CamberNetwork.status`):
+        ``SUCCESSFUL`` when every member stopped on a criterion (early stopping on the held-out
+        conditions, or Levenberg–Marquardt finding no step that lowers the error, MATLAB's
+        "maximum mu reached"), ``MAX_STEPS_REACHED`` when a member used its whole step budget
+        (``lm_steps``, or Adam alone when ``lm_steps=0``), ``NONFINITE`` when NaN/inf appeared
+        (that member's last finite parameters are kept).
 
     Raises
     ------
