@@ -4,7 +4,16 @@ Each concern has its own module that adds commands to the shared Typer :data:`ap
 them here registers the commands.
 """
 
-from skisnow.cli import _contact, _demo, _explore, _micro, _network, _ski, _sweep  # noqa: F401
+from skisnow.cli import (  # noqa: F401  (registers)
+    _contact,
+    _demo,
+    _explore,
+    _micro,
+    _network,
+    _ski,
+    _sweep,
+    _workflows,
+)
 from skisnow.cli._app import app, main
 
 __all__ = ["app", "main"]

@@ -9,7 +9,9 @@ helper writes them, :func:`save_figure` (PNG and SVG by default, no creation dat
 * :func:`plot_zone_map`, :func:`plot_load_share`, :func:`sweep_figures` — maps of a sweep
   (Figures 8–9);
 * :func:`plot_camber_profiles` — free camber of skis;
-* :func:`topography_figure`, :func:`bearing_figure` — the micro scale.
+* :func:`topography_figure`, :func:`bearing_figure` — the micro scale;
+* :func:`plot_fleet`, :func:`plot_snow_ranking`, :func:`plot_cycle`, :func:`animate_cycle` —
+  the technician workflows (a fleet, a ranking across snow, a load cycle and its animation).
 """
 
 from skisnow.plot._contact import plot_contact
@@ -17,15 +19,20 @@ from skisnow.plot._maps import MAP_KINDS, plot_load_share, plot_zone_map, sweep_
 from skisnow.plot._micro import bearing_figure, topography_figure
 from skisnow.plot._profiles import plot_camber_profiles
 from skisnow.plot._style import FORMATS, figure_svg, save_figure
+from skisnow.plot._workflows import animate_cycle, plot_cycle, plot_fleet, plot_snow_ranking
 
 __all__ = [
     "FORMATS",
     "MAP_KINDS",
+    "animate_cycle",
     "bearing_figure",
     "figure_svg",
     "plot_camber_profiles",
     "plot_contact",
+    "plot_cycle",
+    "plot_fleet",
     "plot_load_share",
+    "plot_snow_ranking",
     "plot_zone_map",
     "save_figure",
     "sweep_figures",

@@ -1,0 +1,214 @@
+"""Figures of the technician workflows: a fleet overlaid, a ranking across snow, a load cycle
+and its animation (Kalliorinne et al. 2023: loaded profile, apparent pressure, zones)."""
+
+from __future__ import annotations
+
+import shutil
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+from matplotlib.figure import Figure
+
+from skisnow._errors import InputError
+from skisnow.plot._style import COLORS, ZONE_COLORS, new_figure, style
+
+__all__ = ["animate_cycle", "plot_cycle", "plot_fleet", "plot_snow_ranking"]
+
+
+def plot_fleet(comparison: Any) -> Figure:
+    """Loaded profiles (top) and contact pressures (bottom) of every ski of a
+    :class:`~skisnow.workflows.FleetComparison`, overlaid: full body weight solid, half dashed."""
+    fig, axes = new_figure(1, 2, width=8.0, height=5.6, sharex=True)
+    ax_h, ax_p = axes[0, 0], axes[1, 0]
+    cycle = [f"C{i}" for i in range(10)]
+    with style():
+        for k, entry in enumerate(comparison.entries):
+            color = cycle[k % len(cycle)]
+            for load, ls in (("full", "-"), ("half", "--")):
+                sol = entry.solutions[load]
+                x_mm = sol.x * 1e3
+                # the profile as it lies on the snow: h − δ − θ(x − x_m) + u is the gap; show h
+                ax_h.plot(x_mm, sol.height * 1e3, ls, color=color, lw=1.0)
+                ax_p.plot(x_mm, sol.pressure * 1e-3, ls, color=color, lw=1.0)
+            ax_h.plot([], [], "-", color=color, label=entry.ski.label)
+            kz = entry.ski.ski.kick_zone
+            if kz is not None:
+                ax_p.axvspan(kz[0] * 1e3, kz[1] * 1e3, color=color, alpha=0.06)
+        ax_h.plot([], [], "k-", label=f"{comparison.body_mass:g} kg")
+        ax_h.plot([], [], "k--", label=f"{comparison.body_mass / 2:g} kg")
+        ax_h.set_ylabel("loaded camber height h [mm]")
+        # the running surface matters, not the shovel: scale to the central 60 % of each ski
+        tops = []
+        for entry in comparison.entries:
+            sol = entry.solutions["half"]
+            a, b = sol.x[0], sol.x[-1]
+            mid = (sol.x > a + 0.2 * (b - a)) & (sol.x < b - 0.2 * (b - a))
+            tops.append(float(sol.height[mid].max()) * 1e3)
+        ax_h.set_ylim(0, 1.4 * max(tops, default=1.0))
+        ax_h.legend(loc="upper right", ncols=2)
+        ax_p.set_ylabel("pressure [kPa]")
+        ax_p.set_xlabel("x from the balance point [mm] (tip →)")
+        ax_h.set_title(
+            f"Fleet at x_m = {comparison.load_position * 1e3:g} mm on "
+            f"{comparison.snow_modulus * 1e-6:g} MPa snow ({comparison.ski_model}); shaded: "
+            "kick zones"
+        )
+    return fig
+
+
+def plot_snow_ranking(ranking: Any) -> Figure:
+    """A criterion across snow moduli (left) and the rank of each ski (right) of a
+    :class:`~skisnow.workflows.SnowRanking`; where the order changes is shaded."""
+    fig, axes = new_figure(2, 1, width=9.0, height=3.6)
+    ax_v, ax_r = axes[0, 0], axes[0, 1]
+    e = ranking.snow_moduli * 1e-6
+    with style():
+        for i, label in enumerate(ranking.skis):
+            ax_v.plot(e, ranking.values[i], "o-", ms=3, label=label)
+            ax_r.step(e, ranking.ranks[i], where="mid", label=label)
+        for lo, hi, *_ in ranking.changes:
+            for ax in (ax_v, ax_r):
+                ax.axvspan(lo * 1e-6, hi * 1e-6, color="0.5", alpha=0.15, lw=0)
+        for ax in (ax_v, ax_r):
+            ax.set_xscale("log")
+            ax.minorticks_off()
+            ax.set_xticks(e, [f"{v:g}" for v in e])
+            ax.set_xlabel("snow modulus E [MPa]")
+        crit = ranking.criterion
+        ax_v.set_ylabel(crit.column)
+        ax_v.set_title(f"{crit.name}: {crit.better} is better")
+        ax_r.set_ylabel("rank (1 = best)")
+        ax_r.set_yticks(range(1, len(ranking.skis) + 1))
+        ax_r.invert_yaxis()
+        ax_r.set_title(
+            "order changes in the shaded bands" if ranking.changes else "order never changes"
+        )
+        ax_r.legend(loc="best")
+    return fig
+
+
+def plot_cycle(ds: Any) -> Figure:
+    """A load cycle (:func:`~skisnow.workflows.run_cycle`): load and centre of pressure, zone
+    lengths, mean and peak pressures, load shares; the frames where the grip wax touches the
+    snow are shaded."""
+    fig, axes = new_figure(1, 4, width=7.5, height=8.0, sharex=True)
+    t = ds["time"].values
+    touch = ds["kick_contact"].values.astype(bool)
+    with style():
+        ax = axes[0, 0]
+        ax.plot(t, ds["force"].values, color=COLORS["load"], label="force [N]")
+        ax.set_ylabel("force on the ski [N]")
+        ax2 = ax.twinx()
+        ax2.plot(t, ds["load_position"].values * 1e3, color="0.3", ls="--", label="x_m")
+        ax2.set_ylabel("centre of pressure x_m [mm]")
+        ax2.grid(False)
+        for name in ("rear", "middle", "front", "total"):
+            z = ds.sel(zone=name)
+            c = ZONE_COLORS[name]
+            axes[1, 0].plot(t, z["length"].values * 1e3, color=c, label=name)
+            axes[2, 0].plot(t, z["mean_pressure"].values * 1e-3, color=c, label=f"{name} mean")
+            if name == "total":
+                axes[2, 0].plot(t, z["max_pressure"].values * 1e-3, color=c, ls=":", label="peak")
+            else:
+                axes[3, 0].plot(t, z["load_share"].values, color=c, label=name)
+        axes[3, 0].plot(t, ds["kick_share"].values, color="k", ls="--", label="kick zone")
+        axes[1, 0].set_ylabel("contact length [mm]")
+        axes[2, 0].set_ylabel("pressure [kPa]")
+        axes[3, 0].set_ylabel("load share")
+        axes[3, 0].set_xlabel("time [s]")
+        axes[1, 0].legend(loc="upper right", ncols=4)
+        axes[3, 0].legend(loc="upper right", ncols=4)
+        for row in axes[:, 0]:
+            _shade(row, t, touch)
+        kick = "grip wax touches (shaded)" if ds.attrs.get("kick_zone") else "no kick zone"
+        axes[0, 0].set_title(
+            f"{ds.attrs['ski']} — {ds.attrs['history']} on {ds.attrs['snow_modulus'] * 1e-6:g} "
+            f"MPa snow ({ds.attrs['route']} route); {kick}"
+        )
+    return fig
+
+
+def _shade(ax: Any, t: np.ndarray, mask: np.ndarray) -> None:
+    if not mask.any():
+        return
+    edges = np.concatenate([[t[0]], 0.5 * (t[1:] + t[:-1]), [t[-1]]])
+    d = np.diff(np.concatenate([[0], mask.astype(np.int8), [0]]))
+    for a, b in zip(np.flatnonzero(d == 1), np.flatnonzero(d == -1), strict=True):
+        ax.axvspan(edges[a], edges[b], color=ZONE_COLORS["middle"], alpha=0.12, lw=0)
+
+
+def animate_cycle(
+    ds: Any,
+    path: str | Path,
+    *,
+    fps: int = 20,
+    progress: Callable[[int, int], None] | None = None,
+) -> Path:
+    """Write an animation of a load cycle: loaded profile, deformed snow surface and pressure.
+
+    GIF (Matplotlib's PillowWriter) for ``.gif``; MP4 (FFMpegWriter) for ``.mp4``, which needs
+    ``ffmpeg`` on PATH. ``ds`` must hold the fields (``run_cycle(..., keep_fields=True)``).
+
+    Returns the path written.
+    """
+    from matplotlib.animation import FFMpegWriter, PillowWriter
+
+    path = Path(path)
+    suffix = path.suffix.lower()
+    if suffix not in (".gif", ".mp4"):
+        raise InputError(f"{path}: an animation is written as .gif or .mp4, not {suffix!r}")
+    if suffix == ".mp4" and shutil.which("ffmpeg") is None:
+        raise InputError(
+            f"{path}: MP4 needs ffmpeg on PATH (Debian: apt install ffmpeg); write a .gif instead"
+        )
+    if "pressure" not in ds:
+        raise InputError("the cycle dataset holds no fields: run it with keep_fields=True")
+    x = ds["x"].values * 1e3
+    t = ds["time"].values
+    h = ds["height"].values * 1e3
+    p = ds["pressure"].values * 1e-3
+    u = ds["snow_displacement"].values * 1e3
+    loaded = ds["loaded"].values.astype(bool)
+    # the ski as it lies on the snow: gap + snow surface = h − δ − θ(x − x_m) (rigid-body motion)
+    delta = np.nan_to_num(ds["translation"].values)
+    theta = np.nan_to_num(ds["rotation"].values)
+    xm = ds["load_position"].values
+    ski_y = h - (delta[:, None] + theta[:, None] * (ds["x"].values[None, :] - xm[:, None])) * 1e3
+    fig, axes = new_figure(1, 2, width=7.0, height=4.6, sharex=True)
+    ax_s, ax_p = axes[0, 0], axes[1, 0]
+    kz = ds.attrs.get("kick_zone") or []
+    with style():
+        (line_ski,) = ax_s.plot(x, ski_y[0], color=COLORS["profile"], label="ski base")
+        (line_snow,) = ax_s.plot(x, -u[0], color=COLORS["snow"], lw=0.9, label="snow surface")
+        (line_p,) = ax_p.plot(x, p[0], color=COLORS["pressure"])
+        marker = ax_s.axvline(xm[0] * 1e3, color=COLORS["load"], ls=":", lw=1.0)
+        if len(kz) == 2:
+            for ax in (ax_s, ax_p):
+                ax.axvspan(kz[0] * 1e3, kz[1] * 1e3, color=ZONE_COLORS["middle"], alpha=0.08)
+        lo = float(np.nanmin(np.where(loaded[:, None], -u, np.nan))) if loaded.any() else -0.1
+        ax_s.set_ylim(min(lo, -0.05) * 1.2, max(0.5, float(np.nanpercentile(ski_y, 99))))
+        ax_p.set_ylim(0, max(1.0, float(np.nanmax(p)) * 1.05))
+        ax_s.set_ylabel("height [mm]")
+        ax_s.legend(loc="upper right")
+        ax_p.set_ylabel("pressure [kPa]")
+        ax_p.set_xlabel("x from the balance point [mm] (tip →)")
+        title = ax_s.set_title("")
+    writer = PillowWriter(fps=fps) if suffix == ".gif" else FFMpegWriter(fps=fps)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    force = ds["force"].values
+    with style(), writer.saving(fig, str(path), dpi=80):
+        for i in range(t.size):
+            line_ski.set_ydata(ski_y[i])
+            line_snow.set_ydata(-u[i])
+            line_p.set_ydata(p[i])
+            marker.set_xdata([xm[i] * 1e3, xm[i] * 1e3])
+            title.set_text(
+                f"{ds.attrs['ski']} — t = {t[i]:.2f} s, {force[i]:.0f} N at "
+                f"{xm[i] * 1e3:.0f} mm" + ("" if loaded[i] else " (unloaded)")
+            )
+            writer.grab_frame()
+            if progress is not None:
+                progress(i + 1, t.size)
+    return path

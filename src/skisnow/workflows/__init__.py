@@ -1,0 +1,79 @@
+"""Technician workflows: a fleet side by side, pairs, and the contact over a load cycle.
+
+Built on the one-case chain of Kalliorinne et al. (2023): the loaded profile (eq. 1) pressed into
+the elastic half-space with force and moment balance (eq. 2–3), grouped into zones.
+
+* skis: :func:`resolve_ski`, :func:`resolve_fleet` → :class:`FleetSki` (a shipped name, a ski
+  file, a bench file);
+* a fleet: :func:`compare_fleet` → :class:`FleetComparison` (metrics and contact at ½ and 1
+  body weight, :data:`CRITERIA` for rankings), :func:`rank_across_snow` → :class:`SnowRanking`;
+* pairs: :func:`match_pairs` → :class:`Pairing` (minimum-weight matching of
+  :func:`pair_distance`);
+* load cycles: :class:`LoadHistory`, :func:`read_load_history`, :data:`TEMPLATES`,
+  :func:`template_history`, :func:`run_cycle` (an xarray Dataset over time),
+  :func:`kick_contact_summary`.
+"""
+
+from skisnow.workflows._cycle import UNLOADED_MASS, ZONES, kick_contact_summary, run_cycle
+from skisnow.workflows._fleet import (
+    CRITERIA,
+    DEFAULT_LOAD_POSITION,
+    Criterion,
+    FleetComparison,
+    FleetEntry,
+    SnowRanking,
+    compare_fleet,
+    rank_across_snow,
+)
+from skisnow.workflows._history import (
+    MAX_GAP_FACTOR,
+    LoadHistory,
+    check_positions,
+    read_load_history,
+)
+from skisnow.workflows._pairs import (
+    CAMBER_TOLERANCE,
+    CONTACT_TOLERANCE,
+    STIFFNESS_TOLERANCE,
+    PairDistance,
+    Pairing,
+    match_pairs,
+    pair_distance,
+)
+from skisnow.workflows._skis import FleetSki, resolve_fleet, resolve_ski
+from skisnow.workflows._solve import KickContact, kick_zone_contact
+from skisnow.workflows._templates import TEMPLATES, CycleTemplate, template_history
+
+__all__ = [
+    "CAMBER_TOLERANCE",
+    "CONTACT_TOLERANCE",
+    "CRITERIA",
+    "DEFAULT_LOAD_POSITION",
+    "MAX_GAP_FACTOR",
+    "STIFFNESS_TOLERANCE",
+    "TEMPLATES",
+    "UNLOADED_MASS",
+    "ZONES",
+    "Criterion",
+    "CycleTemplate",
+    "FleetComparison",
+    "FleetEntry",
+    "FleetSki",
+    "KickContact",
+    "LoadHistory",
+    "PairDistance",
+    "Pairing",
+    "SnowRanking",
+    "check_positions",
+    "compare_fleet",
+    "kick_contact_summary",
+    "kick_zone_contact",
+    "match_pairs",
+    "pair_distance",
+    "rank_across_snow",
+    "read_load_history",
+    "resolve_fleet",
+    "resolve_ski",
+    "run_cycle",
+    "template_history",
+]

@@ -1,0 +1,251 @@
+"""A ski's contact over a load cycle: one load case per frame, warm-started along time.
+
+Kalliorinne et al. (2023, §3.1) train the camber network so that a whole cycle of the diagonal
+stride, double poling or a skating gear can be followed as a sequence of load cases. Each frame
+of a :class:`~skisnow.workflows.LoadHistory` is one case: the loaded profile h = f(x, m, x_m)
+(eq. 1) pressed into the elastic snow with force and moment balance (eq. 2–3). The contact
+solve of a frame starts from the pressure of the previous loaded frame (the patches move little
+between frames), and all network profiles come from one batched call.
+
+Frames carrying less than :data:`UNLOADED_MASS` are the ski in the air or gliding unweighted
+(the swing phase): they are not solved and carry zero contact.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Literal
+
+import numpy as np
+
+from skisnow._errors import InputError, UnsupportedLoadError
+from skisnow.contact import effective_modulus
+from skisnow.workflows._history import LoadHistory, check_positions
+from skisnow.workflows._skis import FleetSki, resolve_ski
+from skisnow.workflows._solve import (
+    choose_route,
+    kick_zone_contact,
+    loaded_profiles,
+    solve_loaded,
+    stations,
+)
+
+__all__ = ["UNLOADED_MASS", "ZONES", "kick_contact_summary", "run_cycle"]
+
+#: Below this load (as a mass, kg) a frame is the unloaded swing: not solved, no contact. It is
+#: the lightest load the camber bench (and the shipped networks) cover.
+UNLOADED_MASS: float = 5.0
+
+#: The zones reported per frame.
+ZONES: tuple[str, ...] = ("rear", "middle", "front", "total")
+
+_ZONE_FIELDS = {
+    "length": ("m", "contact length"),
+    "area": ("m2", "contact area"),
+    "mean_pressure": ("Pa", "mean contact pressure (force / area)"),
+    "max_pressure": ("Pa", "peak contact pressure"),
+    "load_share": ("1", "share of the load carried"),
+}
+
+
+def run_cycle(
+    ski: str | FleetSki,
+    history: LoadHistory,
+    *,
+    snow_modulus: float,
+    profile_source: Literal["auto", "network", "beam"] = "auto",
+    n_points: int = 4096,
+    keep_fields: bool = True,
+    progress: Callable[[int, int], None] | None = None,
+):
+    """Contact of one ski over a load history → an :class:`xarray.Dataset` over time.
+
+    Parameters
+    ----------
+    ski
+        A shipped name, a ski file, or a resolved :class:`FleetSki`.
+    history
+        Force and centre of pressure over time (SI).
+    snow_modulus
+        Young's modulus of the snow [Pa] (E' from eq. 2 with the default ski base).
+    profile_source
+        ``'auto'``: the shipped network where it exists and every loaded frame lies in its
+        trained domain, else the beam (the dataset's ``route_note`` says why); ``'network'`` or
+        ``'beam'`` to insist.
+    n_points
+        Stations along the ski.
+    keep_fields
+        Keep h(x, t), p(x, t) and the snow displacement u(x, t) (for figures and animations).
+    progress
+        Called as ``progress(done, total)`` after each frame.
+
+    Returns
+    -------
+    xarray.Dataset
+        Dimension ``time`` [s] (and ``zone``, ``x``): ``force``, ``load_position``,
+        ``loaded``; per zone ``length``, ``area``, ``mean_pressure``, ``max_pressure``,
+        ``load_share``, ``patches``; ``kick_contact`` (bool), ``kick_length``, ``kick_force``,
+        ``kick_share``; ``translation``, ``rotation``, ``converged``; with ``keep_fields``
+        ``height``, ``pressure``, ``snow_displacement`` over (time, x). SI units in ``attrs``.
+        ``attrs`` also carry the route, its note, the history's source and the ski.
+
+    Raises
+    ------
+    InputError
+        A centre of pressure off the ski, a bad snow modulus.
+    """
+    import xarray as xr
+
+    fs = resolve_ski(ski) if not isinstance(ski, FleetSki) else ski
+    if not (np.isfinite(snow_modulus) and snow_modulus > 0):
+        raise InputError(f"snow modulus must be a positive number of Pa, got {snow_modulus!r}")
+    check_positions(history, x_tail=fs.ski.x_tail, x_tip=fs.ski.x_tip)
+    x = stations(fs, n_points)
+    n_t = history.time.size
+    mass = history.mass
+    loaded = mass >= UNLOADED_MASS
+    idx = np.flatnonzero(loaded)
+    route, note = choose_route(
+        fs, mass[idx], history.load_position[idx], x, requested=profile_source
+    )
+    heights = np.zeros((n_t, x.size))
+    heights[idx] = loaded_profiles(fs, mass[idx], history.load_position[idx], x, route=route)
+    if not loaded.all():
+        # the unloaded ski: its free camber, shown in figures (not solved)
+        heights[~loaded] = fs.ski.free_camber(x)
+    modulus = effective_modulus(snow_modulus)
+
+    nz = len(ZONES)
+    zone_vals = {k: np.zeros((n_t, nz)) for k in _ZONE_FIELDS}
+    for k in ("mean_pressure", "max_pressure"):
+        zone_vals[k][:] = np.nan  # not defined without contact
+    patches = np.zeros((n_t, nz), dtype=np.int64)
+    kick = {k: np.zeros(n_t) for k in ("length", "force", "share")}
+    kick_touch = np.zeros(n_t, dtype=bool)
+    translation = np.full(n_t, np.nan)
+    rotation = np.full(n_t, np.nan)
+    converged = np.ones(n_t, dtype=bool)
+    fields = (
+        {k: np.zeros((n_t, x.size)) for k in ("pressure", "snow_displacement")}
+        if keep_fields
+        else {}
+    )
+    start = None
+    for done, i in enumerate(range(n_t), start=1):
+        if loaded[i]:
+            try:
+                sol, zones = solve_loaded(
+                    fs,
+                    x,
+                    heights[i],
+                    mass=float(mass[i]),
+                    load_position=float(history.load_position[i]),
+                    modulus=modulus,
+                    initial_pressure=start,
+                )
+            except UnsupportedLoadError as exc:
+                raise InputError(
+                    f"{history.name}: frame at t = {history.time[i]:g} s "
+                    f"({mass[i]:.1f} kg at {history.load_position[i] * 1e3:.0f} mm): {exc}"
+                ) from exc
+            start = sol.pressure
+            for j, name in enumerate(ZONES):
+                z = zones[name]
+                for k in _ZONE_FIELDS:
+                    zone_vals[k][i, j] = getattr(z, k)
+                patches[i, j] = z.patches
+            kc = kick_zone_contact(sol, fs.ski.kick_zone)
+            kick_touch[i] = kc.touching
+            kick["length"][i], kick["force"][i], kick["share"][i] = kc.length, kc.force, kc.share
+            translation[i], rotation[i] = sol.translation, sol.rotation
+            converged[i] = sol.converged
+            if keep_fields:
+                fields["pressure"][i] = sol.pressure
+                fields["snow_displacement"][i] = sol.displacement
+        if progress is not None:
+            progress(done, n_t)
+
+    tz = ("time", "zone")
+    data = {
+        "force": ("time", history.force, {"units": "N", "long_name": "normal force on the ski"}),
+        "load_position": (
+            "time",
+            history.load_position,
+            {"units": "m", "long_name": "centre of pressure from the balance point"},
+        ),
+        "loaded": ("time", loaded, {"long_name": f"load >= {UNLOADED_MASS:g} kg (solved)"}),
+        "patches": (tz, patches, {"long_name": "contact patches"}),
+        "kick_contact": ("time", kick_touch, {"long_name": "grip wax touches the snow"}),
+        "kick_length": ("time", kick["length"], {"units": "m"}),
+        "kick_force": ("time", kick["force"], {"units": "N"}),
+        "kick_share": ("time", kick["share"], {"units": "1"}),
+        "translation": ("time", translation, {"units": "m"}),
+        "rotation": ("time", rotation, {"units": "rad"}),
+        "converged": ("time", converged, {}),
+    }
+    for k, (unit, long_name) in _ZONE_FIELDS.items():
+        data[k] = (tz, zone_vals[k], {"units": unit, "long_name": long_name})
+    if keep_fields:
+        data["height"] = (("time", "x"), heights, {"units": "m", "long_name": "loaded profile"})
+        data["pressure"] = (("time", "x"), fields["pressure"], {"units": "Pa"})
+        data["snow_displacement"] = (("time", "x"), fields["snow_displacement"], {"units": "m"})
+    ds = xr.Dataset(
+        data,
+        coords={
+            "time": ("time", history.time, {"units": "s"}),
+            "zone": list(ZONES),
+            "x": ("x", x, {"units": "m", "long_name": "position from the balance point"}),
+        },
+        attrs={
+            "ski": fs.label,
+            "ski_origin": fs.origin,
+            "kick_zone": list(fs.ski.kick_zone) if fs.ski.kick_zone else [],
+            "history": history.name,
+            "history_source": history.source,
+            "snow_modulus": float(snow_modulus),
+            "equivalent_modulus": float(modulus),
+            "route": route,
+            "route_note": note or "",
+            "n_points": int(x.size),
+            "unloaded_mass": UNLOADED_MASS,
+        },
+    )
+    return ds
+
+
+def _runs(mask: np.ndarray) -> list[tuple[int, int]]:
+    d = np.diff(np.concatenate([[0], mask.astype(np.int8), [0]]))
+    return list(zip(np.flatnonzero(d == 1), np.flatnonzero(d == -1) - 1, strict=True))
+
+
+def kick_contact_summary(ds) -> dict[str, float | int]:
+    """When and for how long the grip wax touches the snow over the cycle.
+
+    Each frame stands for the time interval around it (half-way to its neighbours), so the
+    contact time is the sum of those intervals over the frames with kick-zone contact; the
+    resolution is one frame interval.
+
+    Returns
+    -------
+    dict
+        ``contact_time`` [s], ``loaded_time`` [s] (frames with load), ``fraction_of_loaded``,
+        ``first_touch``/``last_touch`` [s] (NaN if never), ``episodes`` (separate touch-downs),
+        ``max_kick_share`` and ``max_kick_length`` [m].
+    """
+    t = np.asarray(ds["time"].values, dtype=float)
+    touch = np.asarray(ds["kick_contact"].values, dtype=bool)
+    loaded = np.asarray(ds["loaded"].values, dtype=bool)
+    edges = np.concatenate([[t[0]], 0.5 * (t[1:] + t[:-1]), [t[-1]]])
+    dt = np.diff(edges)
+    contact_time = float(dt[touch].sum())
+    loaded_time = float(dt[loaded].sum())
+    return {
+        "contact_time": contact_time,
+        "loaded_time": loaded_time,
+        "fraction_of_loaded": contact_time / loaded_time if loaded_time > 0 else float("nan"),
+        "first_touch": float(t[touch][0]) if touch.any() else float("nan"),
+        "last_touch": float(t[touch][-1]) if touch.any() else float("nan"),
+        "episodes": len(_runs(touch)),
+        "max_kick_share": float(np.max(ds["kick_share"].values)),
+        "max_kick_length": float(np.max(ds["kick_length"].values)),
+    }

@@ -1,0 +1,421 @@
+"""A fleet side by side: practitioners' metrics and the contact at half and full body weight.
+
+For each ski of a fleet, one athlete (body mass m) and the day's snow (E): the bench metrics a
+technician reads (camber under ½ and 1 body weight, wax-pocket length, closing load, stiffness;
+:func:`skisnow.ski.ski_metrics`) and the apparent contact at ½ m and m (Kalliorinne et al.
+2023: loaded profile, eq. 1, on the elastic half-space with force and moment balance, eq. 2–3):
+zone lengths, areas, mean and peak pressures, load shares, and the kick-zone contact. Then a
+ranking by a criterion of :data:`CRITERIA`, and the same ranking across a range of snow moduli.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from typing import Any, Literal
+
+import numpy as np
+
+from skisnow._errors import InputError, SkisnowError
+from skisnow.contact import effective_modulus
+from skisnow.workflows._skis import FleetSki, resolve_fleet
+from skisnow.workflows._solve import (
+    KickContact,
+    choose_route,
+    kick_zone_contact,
+    loaded_profiles,
+    solve_loaded,
+    stations,
+)
+
+__all__ = [
+    "CRITERIA",
+    "Criterion",
+    "FleetComparison",
+    "FleetEntry",
+    "SnowRanking",
+    "compare_fleet",
+    "rank_across_snow",
+]
+
+#: The reference load position [m]: 120 mm behind the balance point, as in the paper's figures.
+DEFAULT_LOAD_POSITION = -0.120
+_LOADS = {"half": 0.5, "full": 1.0}
+_ZONES = ("rear", "middle", "front", "total")
+
+
+@dataclass(frozen=True, kw_only=True)
+class FleetEntry:
+    """One ski of a comparison: its metrics and its two contact cases (SI units)."""
+
+    ski: FleetSki
+    route: str
+    route_note: str | None
+    metrics: Any  # skisnow.ski.SkiMetrics
+    solutions: dict[str, Any] = field(repr=False)  # 'half' / 'full' -> ContactSolution
+    zones: dict[str, Any] = field(repr=False)  # 'half' / 'full' -> ZoneMetrics
+    kick: dict[str, KickContact]
+
+    def record(self) -> dict[str, Any]:
+        """One flat record in field units (mm, cm², kPa, kg, N/mm) — a row of the table."""
+        m = self.metrics
+        rec: dict[str, Any] = {
+            "ski": self.ski.label,
+            "origin": self.ski.origin,
+            "profile_route": self.route,
+            "camber_half_mm": m.camber_half * 1e3,
+            "camber_full_mm": m.camber_full * 1e3,
+            "pocket_0.1mm_half_mm": m.pocket_length_01_half * 1e3,
+            "pocket_0.1mm_full_mm": m.pocket_length_01_full * 1e3,
+            "closing_load_kg": m.closing_load,
+            "stiffness_n_per_mm": m.stiffness * 1e-3,
+        }
+        for load in _LOADS:
+            z = self.zones[load]
+            for name in _ZONES:
+                zone = z[name]
+                p = f"{load}_{name}"
+                rec[f"{p}_length_mm"] = zone.length * 1e3
+                rec[f"{p}_area_cm2"] = zone.area * 1e4
+                rec[f"{p}_mean_pressure_kpa"] = zone.mean_pressure * 1e-3
+                rec[f"{p}_peak_pressure_kpa"] = zone.max_pressure * 1e-3
+                rec[f"{p}_load_share"] = zone.load_share
+            k = self.kick[load]
+            rec[f"{load}_kick_contact"] = k.touching
+            rec[f"{load}_kick_length_mm"] = k.length * 1e3
+            rec[f"{load}_kick_share"] = k.share
+        return rec
+
+
+@dataclass(frozen=True, kw_only=True)
+class Criterion:
+    """A ranking criterion: a value per ski (from its record) and which way is better."""
+
+    name: str
+    description: str
+    column: str
+    better: Literal["lower", "higher"]
+    snow_dependent: bool = True
+
+    def order(self, values: Sequence[float]) -> np.ndarray:
+        """Indices from best to worst (NaN last; stable for ties)."""
+        v = np.asarray(values, dtype=float)
+        key = v if self.better == "lower" else -v
+        key = np.where(np.isfinite(key), key, np.inf)
+        return np.argsort(key, kind="stable")
+
+
+#: The documented ranking criteria (all at full body weight at the load position, on the snow).
+CRITERIA: dict[str, Criterion] = {
+    c.name: c
+    for c in (
+        Criterion(
+            name="mean-pressure",
+            description="mean contact pressure of the whole footprint at full body weight; lower "
+            "first (the ski floats: less compaction and ploughing on soft snow)",
+            column="full_total_mean_pressure_kpa",
+            better="lower",
+        ),
+        Criterion(
+            name="peak-pressure",
+            description="peak contact pressure at full body weight; lower first (no pressure "
+            "spike at a glide-zone end that digs into soft snow)",
+            column="full_total_peak_pressure_kpa",
+            better="lower",
+        ),
+        Criterion(
+            name="contact-length",
+            description="total contact length at full body weight; shorter first (less base in "
+            "contact: the practitioners' choice for hard, cold snow)",
+            column="full_total_length_mm",
+            better="lower",
+        ),
+        Criterion(
+            name="kick-share",
+            description="share of the load carried between the kick-zone marks at full body "
+            "weight; lower first (the grip wax stays off the snow while gliding)",
+            column="full_kick_share",
+            better="lower",
+        ),
+        Criterion(
+            name="rear-share",
+            description="share of the load on the rear glide zone at full body weight; higher "
+            "first (the load stays behind the foot and the shovel runs light)",
+            column="full_rear_load_share",
+            better="higher",
+        ),
+        Criterion(
+            name="closing-load",
+            description="load that closes the wax pocket on the bench (from the beam); higher "
+            "first (a stiffer pocket); does not depend on the snow",
+            column="closing_load_kg",
+            better="higher",
+            snow_dependent=False,
+        ),
+    )
+}
+
+
+@dataclass(frozen=True, kw_only=True)
+class FleetComparison:
+    """The comparison of a fleet: entries, the skis that could not be compared, the inputs."""
+
+    entries: tuple[FleetEntry, ...]
+    failures: tuple[tuple[str, str], ...]
+    body_mass: float
+    snow_modulus: float
+    load_position: float
+    ski_model: str
+
+    def records(self) -> list[dict[str, Any]]:
+        """One record per ski, field units."""
+        return [e.record() for e in self.entries]
+
+    def ranking(self, criterion: str) -> list[dict[str, Any]]:
+        """The skis from best to worst by ``criterion`` (a key of :data:`CRITERIA`)."""
+        crit = _criterion(criterion)
+        recs = self.records()
+        values = [float(r[crit.column]) for r in recs]
+        return [
+            {"rank": k + 1, "ski": recs[i]["ski"], crit.column: values[i]}
+            for k, i in enumerate(crit.order(values))
+        ]
+
+
+def _criterion(name: str) -> Criterion:
+    if name not in CRITERIA:
+        raise InputError(f"unknown ranking criterion {name!r}; choose one of {', '.join(CRITERIA)}")
+    return CRITERIA[name]
+
+
+def _check_inputs(body_mass: float, snow_modulus: float, ski_model: str) -> None:
+    if not (np.isfinite(body_mass) and 20.0 <= body_mass <= 150.0):
+        raise InputError(f"body mass must be within 20..150 kg, got {body_mass:g} kg")
+    if not (np.isfinite(snow_modulus) and snow_modulus > 0):
+        raise InputError(f"snow modulus must be a positive number of Pa, got {snow_modulus!r}")
+    if ski_model not in ("rigid", "flexible"):
+        raise InputError(f"ski model must be rigid or flexible, got {ski_model!r}")
+    if ski_model == "flexible":
+        raise InputError(
+            "the flexible ski (beam and snow solved together) is not in this version of skisnow; "
+            "use --ski-model rigid"
+        )
+
+
+def _entry(
+    fs: FleetSki,
+    *,
+    body_mass: float,
+    modulus: float,
+    load_position: float,
+    n_points: int,
+) -> FleetEntry:
+    from skisnow.ski import ski_metrics
+
+    x = stations(fs, n_points)
+    masses = np.array([_LOADS[k] * body_mass for k in _LOADS])
+    positions = np.full(masses.size, load_position)
+    route, note = choose_route(fs, masses, positions, x)
+    heights = loaded_profiles(fs, masses, positions, x, route=route)
+    sols, zones, kicks = {}, {}, {}
+    for key, m, h in zip(_LOADS, masses, heights, strict=True):
+        sol, z = solve_loaded(fs, x, h, mass=m, load_position=load_position, modulus=modulus)
+        sols[key], zones[key] = sol, z
+        kicks[key] = kick_zone_contact(sol, fs.ski.kick_zone)
+    metrics = ski_metrics(fs.ski, body_mass=body_mass, load_position=load_position)
+    return FleetEntry(
+        ski=fs,
+        route=route,
+        route_note=note,
+        metrics=metrics,
+        solutions=sols,
+        zones=zones,
+        kick=kicks,
+    )
+
+
+def compare_fleet(
+    skis: Sequence[str | FleetSki],
+    *,
+    body_mass: float,
+    snow_modulus: float,
+    load_position: float = DEFAULT_LOAD_POSITION,
+    ski_model: Literal["rigid", "flexible"] = "rigid",
+    n_points: int = 4096,
+    progress: Callable[[int, int], None] | None = None,
+) -> FleetComparison:
+    """Compare the skis of a fleet for one athlete on one snow.
+
+    Parameters
+    ----------
+    skis
+        Shipped names, ski files, bench files (or resolved :class:`FleetSki`).
+    body_mass
+        The athlete's mass [kg]; contact is solved at ½ and 1 body weight on one ski.
+    snow_modulus
+        Young's modulus of the snow [Pa].
+    load_position
+        x_m [m] of the load (default 120 mm behind the balance point, the paper's reference).
+    ski_model
+        ``'rigid'`` (the paper's rigid loaded profile).
+    n_points
+        Stations along each ski.
+    progress
+        ``progress(done, total)`` after each ski.
+
+    Returns
+    -------
+    FleetComparison
+        A ski that cannot be read or solved is listed in ``failures`` with its message; the
+        others are compared.
+    """
+    _check_inputs(body_mass, snow_modulus, ski_model)
+    resolved, failures = resolve_fleet(list(skis))
+    modulus = effective_modulus(snow_modulus)
+    entries = []
+    for done, fs in enumerate(resolved, start=1):
+        try:
+            entries.append(
+                _entry(
+                    fs,
+                    body_mass=body_mass,
+                    modulus=modulus,
+                    load_position=load_position,
+                    n_points=n_points,
+                )
+            )
+        except SkisnowError as exc:
+            failures.append((fs.label, str(exc)))
+        if progress is not None:
+            progress(done, len(resolved))
+    return FleetComparison(
+        entries=tuple(entries),
+        failures=tuple(failures),
+        body_mass=float(body_mass),
+        snow_modulus=float(snow_modulus),
+        load_position=float(load_position),
+        ski_model=ski_model,
+    )
+
+
+@dataclass(frozen=True, kw_only=True)
+class SnowRanking:
+    """A criterion's value and rank per ski across snow moduli.
+
+    Attributes
+    ----------
+    skis
+        Labels, in the fleet's order.
+    snow_moduli
+        [Pa], increasing.
+    values
+        Criterion value, shape ``(n_skis, n_moduli)``, in the criterion column's field unit.
+    ranks
+        1 = best, same shape.
+    changes
+        ``(E_before, E_after, order_before, order_after)`` where the order of the skis changes
+        between two neighbouring moduli.
+    """
+
+    criterion: Criterion
+    skis: tuple[str, ...]
+    snow_moduli: np.ndarray
+    values: np.ndarray
+    ranks: np.ndarray
+    changes: tuple[tuple[float, float, tuple[str, ...], tuple[str, ...]], ...]
+
+    def winners(self) -> list[str]:
+        """The best ski at each modulus."""
+        return [self.skis[int(np.argmin(self.ranks[:, j]))] for j in range(self.ranks.shape[1])]
+
+
+def rank_across_snow(
+    comparison: FleetComparison,
+    criterion: str,
+    snow_moduli: Sequence[float],
+    *,
+    n_points: int = 4096,
+    progress: Callable[[int, int], None] | None = None,
+) -> SnowRanking:
+    """Rank the compared skis by ``criterion`` on each snow modulus [Pa] of ``snow_moduli``.
+
+    Each (ski, modulus) is the comparison's full-body-weight case on that snow (the loaded
+    profile does not depend on the snow and is computed once per ski; the contact along the
+    moduli is warm-started from the previous one).
+    """
+    crit = _criterion(criterion)
+    moduli = np.asarray(sorted(float(e) for e in snow_moduli))
+    if moduli.size < 2 or not np.all(np.isfinite(moduli)) or np.any(moduli <= 0):
+        raise InputError("the snow range needs at least two positive, finite moduli")
+    entries = comparison.entries
+    if not entries:
+        raise InputError("no ski of the fleet could be compared")
+    values = np.full((len(entries), moduli.size), np.nan)
+    total = len(entries) * moduli.size
+    done = 0
+    for i, entry in enumerate(entries):
+        fs = entry.ski
+        if not crit.snow_dependent:
+            values[i] = float(entry.record()[crit.column])
+            done += moduli.size
+            if progress is not None:
+                progress(done, total)
+            continue
+        x = stations(fs, n_points)
+        m = comparison.body_mass
+        route, _ = choose_route(fs, np.array([m]), np.array([comparison.load_position]), x)
+        (h,) = loaded_profiles(
+            fs, np.array([m]), np.array([comparison.load_position]), x, route=route
+        )
+        start = None
+        for j, e in enumerate(moduli):
+            sol, zones = solve_loaded(
+                fs,
+                x,
+                h,
+                mass=m,
+                load_position=comparison.load_position,
+                modulus=effective_modulus(float(e)),
+                initial_pressure=start,
+            )
+            start = sol.pressure
+            values[i, j] = _value(crit, zones, kick_zone_contact(sol, fs.ski.kick_zone))
+            done += 1
+            if progress is not None:
+                progress(done, total)
+    labels = tuple(e.ski.label for e in entries)
+    ranks = np.empty_like(values, dtype=np.int64)
+    orders = []
+    for j in range(moduli.size):
+        order = crit.order(values[:, j])
+        ranks[order, j] = np.arange(1, len(entries) + 1)
+        orders.append(tuple(labels[k] for k in order))
+    changes = tuple(
+        (float(moduli[j]), float(moduli[j + 1]), orders[j], orders[j + 1])
+        for j in range(moduli.size - 1)
+        if orders[j] != orders[j + 1]
+    )
+    return SnowRanking(
+        criterion=crit,
+        skis=labels,
+        snow_moduli=moduli,
+        values=values,
+        ranks=ranks,
+        changes=changes,
+    )
+
+
+def _value(crit: Criterion, zones: Any, kick: KickContact) -> float:
+    """The criterion's column computed from one full-body-weight contact (field units)."""
+    column = crit.column
+    if column == "full_kick_share":
+        return kick.share
+    _, zone, *rest = column.split("_")
+    quantity = "_".join(rest)
+    z = zones[zone]
+    return {
+        "mean_pressure_kpa": z.mean_pressure * 1e-3,
+        "peak_pressure_kpa": z.max_pressure * 1e-3,
+        "length_mm": z.length * 1e3,
+        "load_share": z.load_share,
+    }[quantity]

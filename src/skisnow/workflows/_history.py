@@ -1,0 +1,264 @@
+"""Load histories: the force on one ski and where it acts, over time (SI inside).
+
+A load history is what force-measuring bindings or pressure insoles record during skiing: at
+times t [s] the normal force F [N] the skier puts on ONE ski and the position x_m [m] of its
+centre of pressure along the ski (from the balance point, positive toward the tip, as
+:func:`skisnow.ski.camber_profile` takes it). Each sample is one load case of the paper's
+h = f(x, m, x_m) (Kalliorinne et al. 2023, §3.1: following "a whole cycle of the diagonal
+stride ... as a sequence of load cases" is what the camber network is for).
+
+Files: CSV with a header ``t_s`` and either ``force_n`` or ``mass_kg`` (F = m·g₀), and
+``load_position_mm``; comment lines start with ``#``; row numbers in messages are the lines of
+the file as a text editor counts them.
+"""
+
+from __future__ import annotations
+
+import io as _io
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from skisnow._errors import FileFormatError, InputError
+from skisnow.constants import STANDARD_GRAVITY
+
+__all__ = ["MAX_GAP_FACTOR", "LoadHistory", "check_positions", "read_load_history"]
+
+#: A time step longer than this many times the median step is a gap (a lost stretch of samples).
+MAX_GAP_FACTOR: float = 3.0
+
+
+@dataclass(frozen=True, kw_only=True, eq=False)
+class LoadHistory:
+    """Force and centre of pressure on one ski over time (SI units).
+
+    Attributes
+    ----------
+    time
+        Sample times t [s], strictly increasing, shape ``(n,)``.
+    force
+        Normal force F >= 0 [N] on the ski.
+    load_position
+        Centre of pressure x_m [m] from the balance point, positive toward the tip.
+    name
+        A label (template name or file name).
+    source
+        Where the numbers come from (a citation for the templates, the path of a file).
+    lines
+        For a history read from a file: the file line of each sample (messages name it).
+    """
+
+    time: np.ndarray
+    force: np.ndarray
+    load_position: np.ndarray
+    name: str = "load history"
+    source: str = field(default="", compare=False)
+    lines: tuple[int, ...] | None = field(default=None, compare=False, repr=False)
+
+    def __post_init__(self) -> None:
+        arrays = {}
+        for attr in ("time", "force", "load_position"):
+            a = np.array(getattr(self, attr), dtype=float)
+            if a.ndim != 1:
+                raise InputError(f"load history {attr} must be 1-D, got shape {a.shape}")
+            a.setflags(write=False)
+            arrays[attr] = a
+            object.__setattr__(self, attr, a)
+        n = arrays["time"].size
+        if n < 2 or any(a.size != n for a in arrays.values()):
+            raise InputError(
+                "a load history needs time, force and load_position of one length >= 2, got "
+                + ", ".join(f"{k} {v.size}" for k, v in arrays.items())
+            )
+        _validate(
+            arrays["time"],
+            arrays["force"],
+            arrays["load_position"],
+            where=f"load history {self.name!r}",
+            label=lambda i: f"sample {i}",
+            columns=("time", "force", "load_position"),
+        )
+
+    @property
+    def mass(self) -> np.ndarray:
+        """The force as a mass m = F/g₀ [kg] (the bench's and the network's load variable)."""
+        return self.force / STANDARD_GRAVITY
+
+    @property
+    def duration(self) -> float:
+        """t_end − t_start [s]."""
+        return float(self.time[-1] - self.time[0])
+
+    def resample(self, n_frames: int) -> LoadHistory:
+        """The history linearly interpolated on ``n_frames`` equally spaced times (same span)."""
+        if int(n_frames) < 2:
+            raise InputError(f"n_frames must be at least 2, got {n_frames}")
+        t = np.linspace(self.time[0], self.time[-1], int(n_frames))
+        return LoadHistory(
+            time=t,
+            force=np.interp(t, self.time, self.force),
+            load_position=np.interp(t, self.time, self.load_position),
+            name=self.name,
+            source=self.source,
+        )
+
+
+def _validate(
+    t: np.ndarray,
+    force: np.ndarray,
+    position: np.ndarray,
+    *,
+    where: str,
+    label,
+    columns: tuple[str, str, str],
+    max_gap_factor: float = MAX_GAP_FACTOR,
+) -> None:
+    """Raise an InputError naming the first bad row and column: NaN/inf, non-increasing time,
+    a gap in time (a step > ``max_gap_factor`` × the median step), a negative force."""
+    for values, col in zip((t, force, position), columns, strict=True):
+        bad = ~np.isfinite(values)
+        if bad.any():
+            i = int(np.flatnonzero(bad)[0])
+            raise InputError(
+                f"{where}: {label(i)}, column {col!r}: value is NaN, inf or empty; every value "
+                "must be a finite number"
+            )
+    steps = np.diff(t)
+    if np.any(steps <= 0):
+        i = int(np.flatnonzero(steps <= 0)[0]) + 1
+        raise InputError(
+            f"{where}: {label(i)}, column {columns[0]!r}: time {t[i]:g} s does not increase "
+            f"(previous {t[i - 1]:g} s); samples must be in strictly increasing time"
+        )
+    median = float(np.median(steps))
+    big = steps > max_gap_factor * median
+    if big.any():
+        i = int(np.flatnonzero(big)[0]) + 1
+        raise InputError(
+            f"{where}: {label(i)}, column {columns[0]!r}: gap in time from {t[i - 1]:g} s to "
+            f"{t[i]:g} s ({steps[i - 1]:g} s, more than {max_gap_factor:g}x the median step "
+            f"{median:g} s); fill the missing samples or cut the history at the gap"
+        )
+    neg = force < 0
+    if neg.any():
+        i = int(np.flatnonzero(neg)[0])
+        raise InputError(
+            f"{where}: {label(i)}, column {columns[1]!r}: negative load {force[i]:g}; the snow "
+            "can only push on the ski (use 0 while the ski is unloaded)"
+        )
+
+
+def read_load_history(path: str | Path, *, max_gap_factor: float = MAX_GAP_FACTOR) -> LoadHistory:
+    """Read and validate a load-history CSV (``t_s``, ``force_n`` or ``mass_kg``,
+    ``load_position_mm``).
+
+    Parameters
+    ----------
+    path
+        The CSV file; ``#`` comment lines are allowed anywhere.
+    max_gap_factor
+        A time step longer than this × the median step is refused as a gap.
+
+    Returns
+    -------
+    LoadHistory
+        In SI units (s, N, m).
+
+    Raises
+    ------
+    FileFormatError
+        Missing file, wrong or missing columns, a non-numeric or empty cell, NaN, time not
+        strictly increasing, a gap in time, a negative force or mass — the message names the
+        line of the file and the column.
+    """
+    import pandas as pd
+
+    path = Path(path)
+    if not path.is_file():
+        raise FileFormatError(f"{path}: no such file")
+    try:
+        text = path.read_text(encoding="utf-8")
+    except (OSError, UnicodeDecodeError) as exc:
+        raise FileFormatError(f"{path}: cannot read as UTF-8 text ({exc})") from None
+    # file line numbers (1-based) of the lines pandas sees: not comments, not blank
+    kept = [
+        (n + 1, line)
+        for n, line in enumerate(text.splitlines())
+        if line.strip() and not line.lstrip().startswith("#")
+    ]
+    if len(kept) < 3:
+        raise FileFormatError(
+            f"{path}: needs a header and at least two data rows (columns t_s, force_n or "
+            "mass_kg, load_position_mm)"
+        )
+    try:
+        table = pd.read_csv(
+            _io.StringIO("\n".join(line for _, line in kept)), skipinitialspace=True
+        )
+    except (pd.errors.ParserError, pd.errors.EmptyDataError) as exc:
+        raise FileFormatError(f"{path}: not a valid CSV table ({exc})") from None
+    lines = [n for n, _ in kept[1:]]
+    cols = [str(c).strip() for c in table.columns]
+    table.columns = cols
+    has_force, has_mass = "force_n" in cols, "mass_kg" in cols
+    if has_force == has_mass:
+        raise FileFormatError(
+            f"{path}: give exactly one load column, force_n [N] or mass_kg [kg]; header has "
+            f"{', '.join(cols)}"
+        )
+    load_col = "force_n" if has_force else "mass_kg"
+    missing = [c for c in ("t_s", "load_position_mm") if c not in cols]
+    if missing:
+        raise FileFormatError(
+            f"{path}: missing column(s) {', '.join(missing)}; a load history has the columns "
+            f"t_s, force_n or mass_kg, load_position_mm (header has {', '.join(cols)})"
+        )
+    values = {}
+    for col in ("t_s", load_col, "load_position_mm"):
+        raw = table[col].to_numpy()
+        num = pd.to_numeric(table[col], errors="coerce").to_numpy(dtype=float)
+        bad = np.isnan(num) & ~pd.isna(raw)
+        if bad.any():
+            i = int(np.flatnonzero(bad)[0])
+            raise FileFormatError(
+                f"{path}: line {lines[i]}, column {col!r}: {raw[i]!r} is not a number"
+            )
+        values[col] = num
+    try:
+        _validate(
+            values["t_s"],
+            values[load_col],
+            values["load_position_mm"],
+            where=str(path),
+            label=lambda i: f"line {lines[i]}",
+            columns=("t_s", load_col, "load_position_mm"),
+            max_gap_factor=max_gap_factor,
+        )
+    except InputError as exc:
+        raise FileFormatError(str(exc)) from None
+    force = values[load_col] * (STANDARD_GRAVITY if load_col == "mass_kg" else 1.0)
+    return LoadHistory(
+        time=values["t_s"],
+        force=force,
+        load_position=values["load_position_mm"] * 1e-3,
+        name=path.name,
+        source=str(path),
+        lines=tuple(lines),
+    )
+
+
+def check_positions(history: LoadHistory, *, x_tail: float, x_tip: float) -> None:
+    """Raise an InputError if a centre of pressure lies off the ski's running surface
+    [x_tail, x_tip] [m]; the message names the line of the file (or the sample) and the
+    column."""
+    pos = history.load_position
+    off = (pos < x_tail) | (pos > x_tip)
+    if off.any():
+        i = int(np.flatnonzero(off)[0])
+        where = f"line {history.lines[i]}" if history.lines else f"sample {i}"
+        raise InputError(
+            f"{history.source or history.name}: {where} (t = {history.time[i]:g} s), column "
+            f"'load_position_mm': {history.load_position[i] * 1e3:g} mm is off the ski "
+            f"(running surface {x_tail * 1e3:g} to {x_tip * 1e3:g} mm from the balance point)"
+        )

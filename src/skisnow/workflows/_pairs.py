@@ -1,0 +1,279 @@
+"""Matching skis into pairs: the pairing of a fleet that minimises a stated distance.
+
+The distance between two skis i and j is the root sum of squares of three dimensionless terms,
+each a difference divided by a stated practitioner tolerance:
+
+* camber: rms over the common running surface of the free-camber difference z0_i − z0_j,
+  divided by :data:`CAMBER_TOLERANCE` (0.1 mm, the thickness of the paper test that marks the
+  wax pocket);
+* stiffness: rms of ln EI_i − ln EI_j (relative stiffness difference), divided by
+  :data:`STIFFNESS_TOLERANCE` (5 %);
+* contact: ½∫|q_i − q_j| dx / W, the fraction of the athlete's load carried at different
+  places along the ski (q the line load of the predicted contact at the athlete's body mass on
+  the day's snow; 0 identical, 1 disjoint), divided by :data:`CONTACT_TOLERANCE` (0.1).
+
+d_ij = sqrt(d_camber² + d_stiffness² + d_contact²) (one unit = "as different as the tolerance").
+The pairing is a minimum-weight perfect matching of the complete graph with these weights
+(networkx ``min_weight_matching``, the blossom algorithm — not a hand-written search); with an
+odd number of skis one is left as the spare (the matching that leaves it out is the best over
+all choices of the spare).
+"""
+
+from __future__ import annotations
+
+import itertools
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass
+
+import numpy as np
+
+from skisnow._errors import InputError, SkisnowError
+from skisnow.constants import STANDARD_GRAVITY
+from skisnow.contact import effective_modulus
+from skisnow.workflows._fleet import DEFAULT_LOAD_POSITION
+from skisnow.workflows._skis import FleetSki, resolve_fleet
+from skisnow.workflows._solve import choose_route, loaded_profiles, solve_loaded
+
+__all__ = [
+    "CAMBER_TOLERANCE",
+    "CONTACT_TOLERANCE",
+    "STIFFNESS_TOLERANCE",
+    "PairDistance",
+    "Pairing",
+    "match_pairs",
+    "pair_distance",
+]
+
+CAMBER_TOLERANCE = 0.1e-3
+STIFFNESS_TOLERANCE = 0.05
+CONTACT_TOLERANCE = 0.1
+_DX = 1e-3  # the common grid [m] on which curves and line loads are compared
+
+
+@dataclass(frozen=True, kw_only=True)
+class PairDistance:
+    """Distance between two skis and its three terms (dimensionless; raw values in SI)."""
+
+    camber: float
+    stiffness: float
+    contact: float
+    camber_rms: float  # [m]
+    stiffness_rms: float  # rms of ln EI difference
+    load_moved: float  # fraction of the load carried at different places
+
+    @property
+    def total(self) -> float:
+        """sqrt(camber² + stiffness² + contact²)."""
+        return float(np.sqrt(self.camber**2 + self.stiffness**2 + self.contact**2))
+
+
+@dataclass(frozen=True, kw_only=True)
+class _Curves:
+    x: np.ndarray  # common grid
+    z0: np.ndarray
+    log_ei: np.ndarray
+    line_load_x: np.ndarray
+    line_load: np.ndarray  # [N/m]
+    load: float
+
+
+def _curves(fs: FleetSki, *, body_mass: float, load_position: float, modulus: float, n_points):
+    ski = fs.ski
+    x = np.linspace(ski.x_tail, ski.x_tip, int(n_points))
+    m, p = np.array([body_mass]), np.array([load_position])
+    route, _ = choose_route(fs, m, p, x)
+    (h,) = loaded_profiles(fs, m, p, x, route=route)
+    sol, _ = solve_loaded(fs, x, h, mass=body_mass, load_position=load_position, modulus=modulus)
+    grid = np.arange(np.ceil(ski.x_tail / _DX), np.floor(ski.x_tip / _DX) + 1) * _DX
+    return _Curves(
+        x=grid,
+        z0=ski.free_camber(grid),
+        log_ei=np.log(ski.stiffness(grid)),
+        line_load_x=x,
+        line_load=sol.line_load,
+        load=body_mass * STANDARD_GRAVITY,
+    )
+
+
+def _distance(a: _Curves, b: _Curves) -> PairDistance:
+    lo, hi = max(a.x[0], b.x[0]), min(a.x[-1], b.x[-1])
+    if hi - lo < 0.5:
+        raise InputError("two skis overlap over less than 0.5 m of running surface")
+    ia = (a.x >= lo - 1e-9) & (a.x <= hi + 1e-9)
+    ib = (b.x >= lo - 1e-9) & (b.x <= hi + 1e-9)
+    n = min(ia.sum(), ib.sum())
+    dz = a.z0[ia][:n] - b.z0[ib][:n]
+    dk = a.log_ei[ia][:n] - b.log_ei[ib][:n]
+    camber_rms = float(np.sqrt(np.mean(dz**2)))
+    stiff_rms = float(np.sqrt(np.mean(dk**2)))
+    # line loads on one grid spanning both skis (zero off a ski)
+    grid = np.linspace(
+        min(a.line_load_x[0], b.line_load_x[0]),
+        max(a.line_load_x[-1], b.line_load_x[-1]),
+        max(a.line_load_x.size, b.line_load_x.size) * 2,
+    )
+    qa = np.interp(grid, a.line_load_x, a.line_load, left=0.0, right=0.0)
+    qb = np.interp(grid, b.line_load_x, b.line_load, left=0.0, right=0.0)
+    w = 0.5 * (a.load + b.load)
+    moved = float(0.5 * np.trapezoid(np.abs(qa - qb), grid) / w)
+    return PairDistance(
+        camber=camber_rms / CAMBER_TOLERANCE,
+        stiffness=stiff_rms / STIFFNESS_TOLERANCE,
+        contact=moved / CONTACT_TOLERANCE,
+        camber_rms=camber_rms,
+        stiffness_rms=stiff_rms,
+        load_moved=moved,
+    )
+
+
+def pair_distance(
+    a: str | FleetSki,
+    b: str | FleetSki,
+    *,
+    body_mass: float,
+    snow_modulus: float,
+    load_position: float = DEFAULT_LOAD_POSITION,
+    n_points: int = 4096,
+) -> PairDistance:
+    """The distance between two skis (see the module docstring for its definition)."""
+    skis, failures = resolve_fleet([a, b])
+    if failures:
+        raise InputError("; ".join(f"{s}: {m}" for s, m in failures))
+    modulus = effective_modulus(snow_modulus)
+    ca, cb = (
+        _curves(
+            fs,
+            body_mass=body_mass,
+            load_position=load_position,
+            modulus=modulus,
+            n_points=n_points,
+        )
+        for fs in skis
+    )
+    return _distance(ca, cb)
+
+
+@dataclass(frozen=True, kw_only=True)
+class Pairing:
+    """The best pairing of a fleet.
+
+    Attributes
+    ----------
+    skis
+        Labels of the skis that entered the matching.
+    pairs
+        ``(ski_a, ski_b, PairDistance)``, best-matched first.
+    spare
+        The unpaired ski of an odd fleet (``None`` if even).
+    distances
+        The full symmetric matrix of total distances (skis × skis).
+    failures
+        ``(spec, message)`` of skis that could not be read or solved.
+    """
+
+    skis: tuple[str, ...]
+    pairs: tuple[tuple[str, str, PairDistance], ...]
+    spare: str | None
+    distances: np.ndarray
+    failures: tuple[tuple[str, str], ...]
+
+    @property
+    def worst(self) -> tuple[str, str, PairDistance] | None:
+        """The worst-matched pair (largest distance)."""
+        return self.pairs[-1] if self.pairs else None
+
+    @property
+    def total(self) -> float:
+        """Sum of the pair distances (what the matching minimises)."""
+        return float(sum(d.total for _, _, d in self.pairs))
+
+
+def match_pairs(
+    skis: Sequence[str | FleetSki],
+    *,
+    body_mass: float,
+    snow_modulus: float,
+    load_position: float = DEFAULT_LOAD_POSITION,
+    n_points: int = 4096,
+    progress: Callable[[int, int], None] | None = None,
+) -> Pairing:
+    """Pair the skis of a fleet so that the sum of the pair distances is minimal.
+
+    Parameters
+    ----------
+    skis
+        At least two skis (shipped names, ski files, bench files).
+    body_mass, snow_modulus, load_position
+        The athlete [kg], the snow [Pa] and the load position [m] of the contact term.
+
+    Returns
+    -------
+    Pairing
+        Pairs best first, the worst last (flag it), the spare of an odd fleet.
+    """
+    import networkx as nx
+
+    if not (np.isfinite(body_mass) and 20.0 <= body_mass <= 150.0):
+        raise InputError(f"body mass must be within 20..150 kg, got {body_mass:g} kg")
+    resolved, failures = resolve_fleet(list(skis))
+    modulus = effective_modulus(snow_modulus)
+    curves, ok = [], []
+    for done, fs in enumerate(resolved, start=1):
+        try:
+            curves.append(
+                _curves(
+                    fs,
+                    body_mass=body_mass,
+                    load_position=load_position,
+                    modulus=modulus,
+                    n_points=n_points,
+                )
+            )
+            ok.append(fs)
+        except SkisnowError as exc:
+            failures.append((fs.label, str(exc)))
+        if progress is not None:
+            progress(done, len(resolved))
+    if len(ok) < 2:
+        raise InputError(
+            "pairing needs at least two readable skis"
+            + ("; " + "; ".join(f"{s}: {m}" for s, m in failures) if failures else "")
+        )
+    n = len(ok)
+    dist: dict[tuple[int, int], PairDistance] = {}
+    matrix = np.zeros((n, n))
+    for i, j in itertools.combinations(range(n), 2):
+        d = _distance(curves[i], curves[j])
+        dist[i, j] = d
+        matrix[i, j] = matrix[j, i] = d.total
+    if n % 2 == 0:
+        graph = nx.Graph()
+        graph.add_weighted_edges_from((i, j, d.total) for (i, j), d in dist.items())
+        matching = nx.min_weight_matching(graph)
+        spare = None
+    else:
+        # the best matching over every choice of the spare ski
+        best = None
+        for s in range(n):
+            graph = nx.Graph()
+            graph.add_weighted_edges_from(
+                (i, j, d.total) for (i, j), d in dist.items() if s not in (i, j)
+            )
+            m = nx.min_weight_matching(graph) if graph.number_of_edges() else set()
+            cost = sum(dist[min(e), max(e)].total for e in m)
+            if best is None or cost < best[0]:
+                best = (cost, m, s)
+        assert best is not None
+        _, matching, s = best
+        spare = ok[s].label
+    pairs = sorted(
+        ((ok[min(e)].label, ok[max(e)].label, dist[min(e), max(e)]) for e in matching),
+        key=lambda t: t[2].total,
+    )
+    return Pairing(
+        skis=tuple(fs.label for fs in ok),
+        pairs=tuple(pairs),
+        spare=spare,
+        distances=matrix,
+        failures=tuple(failures),
+    )
