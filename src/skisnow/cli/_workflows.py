@@ -99,15 +99,12 @@ def comparison_rows(records: Sequence[dict[str, Any]]) -> list[list[Any]]:
     rows: list[list[Any]] = [["route", *[r["profile_route"] for r in records]]]
     rows += [[label, *[r[key] for r in records]] for key, label in _SIDE_BY_SIDE]
     for load, tag in (("half", "½ BW"), ("full", "1 BW")):
-        for zone in ("rear", "middle", "front", "total"):
+        for zone in ("rear", "middle", "front", "total", "kick"):
             for key, label in _CONTACT_ROWS:
                 rows.append(
                     [f"{tag} {zone} {label}", *[r[f"{load}_{zone}_{key}"] for r in records]]
                 )
         rows.append([f"{tag} grip wax touches", *[r[f"{load}_kick_contact"] for r in records]])
-        kick_mm = [r[f"{load}_kick_length_mm"] for r in records]
-        rows.append([f"{tag} kick-zone contact [mm]", *kick_mm])
-        rows.append([f"{tag} kick-zone load share", *[r[f"{load}_kick_share"] for r in records]])
     return rows
 
 
@@ -367,7 +364,7 @@ def cycle_records(ds: Any) -> list[dict[str, Any]]:
     for i, t in enumerate(ds["time"].values):
         rec: dict[str, Any] = {
             "t_s": float(t),
-            "force_n": float(ds["force"].values[i]),
+            "force_n": float(ds["load"].values[i]),
             "load_position_mm": float(ds["load_position"].values[i] * 1e3),
             "loaded": bool(ds["loaded"].values[i]),
         }
@@ -378,8 +375,6 @@ def cycle_records(ds: Any) -> list[dict[str, Any]]:
             rec[f"{zone}_peak_pressure_kpa"] = float(ds["max_pressure"].values[i, j] * 1e-3)
             rec[f"{zone}_load_share"] = float(ds["load_share"].values[i, j])
         rec["kick_contact"] = bool(ds["kick_contact"].values[i])
-        rec["kick_length_mm"] = float(ds["kick_length"].values[i] * 1e3)
-        rec["kick_share"] = float(ds["kick_share"].values[i])
         rec["converged"] = bool(ds["converged"].values[i])
         recs.append(rec)
     return recs
@@ -401,7 +396,7 @@ def summary_record(ds: Any) -> dict[str, Any]:
         "touch_downs": s["episodes"],
         "max_kick_share": s["max_kick_share"],
         "max_kick_length_mm": s["max_kick_length"] * 1e3,
-        "peak_force_n": float(np.max(ds["force"].values)),
+        "peak_force_n": float(np.max(ds["load"].values)),
         "peak_pressure_kpa": float(np.nanmax(ds["max_pressure"].values, initial=0.0) * 1e-3),
     }
 

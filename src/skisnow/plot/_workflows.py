@@ -27,7 +27,7 @@ def plot_fleet(comparison: Any) -> Figure:
         for k, entry in enumerate(comparison.entries):
             color = cycle[k % len(cycle)]
             for load, ls in (("full", "-"), ("half", "--")):
-                sol = entry.solutions[load]
+                sol = entry.cases[load].solution
                 x_mm = sol.x * 1e3
                 # the profile as it lies on the snow: h − δ − θ(x − x_m) + u is the gap; show h
                 ax_h.plot(x_mm, sol.height * 1e3, ls, color=color, lw=1.0)
@@ -42,7 +42,7 @@ def plot_fleet(comparison: Any) -> Figure:
         # the running surface matters, not the shovel: scale to the central 60 % of each ski
         tops = []
         for entry in comparison.entries:
-            sol = entry.solutions["half"]
+            sol = entry.cases["half"].solution
             a, b = sol.x[0], sol.x[-1]
             mid = (sol.x > a + 0.2 * (b - a)) & (sol.x < b - 0.2 * (b - a))
             tops.append(float(sol.height[mid].max()) * 1e3)
@@ -98,7 +98,7 @@ def plot_cycle(ds: Any) -> Figure:
     touch = ds["kick_contact"].values.astype(bool)
     with style():
         ax = axes[0, 0]
-        ax.plot(t, ds["force"].values, color=COLORS["load"], label="force [N]")
+        ax.plot(t, ds["load"].values, color=COLORS["load"], label="force [N]")
         ax.set_ylabel("force on the ski [N]")
         ax2 = ax.twinx()
         ax2.plot(t, ds["load_position"].values * 1e3, color="0.3", ls="--", label="x_m")
@@ -113,7 +113,8 @@ def plot_cycle(ds: Any) -> Figure:
                 axes[2, 0].plot(t, z["max_pressure"].values * 1e-3, color=c, ls=":", label="peak")
             else:
                 axes[3, 0].plot(t, z["load_share"].values, color=c, label=name)
-        axes[3, 0].plot(t, ds["kick_share"].values, color="k", ls="--", label="kick zone")
+        kick = ds.sel(zone="kick")["load_share"].values
+        axes[3, 0].plot(t, kick, color="k", ls="--", label="between kick marks")
         axes[1, 0].set_ylabel("contact length [mm]")
         axes[2, 0].set_ylabel("pressure [kPa]")
         axes[3, 0].set_ylabel("load share")
@@ -197,7 +198,7 @@ def animate_cycle(
         title = ax_s.set_title("")
     writer = PillowWriter(fps=fps) if suffix == ".gif" else FFMpegWriter(fps=fps)
     path.parent.mkdir(parents=True, exist_ok=True)
-    force = ds["force"].values
+    force = ds["load"].values
     with style(), writer.saving(fig, str(path), dpi=80):
         for i in range(t.size):
             line_ski.set_ydata(ski_y[i])

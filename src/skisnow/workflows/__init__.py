@@ -41,7 +41,6 @@ from skisnow.workflows._pairs import (
     pair_distance,
 )
 from skisnow.workflows._skis import FleetSki, resolve_fleet, resolve_ski
-from skisnow.workflows._solve import KickContact, kick_zone_contact
 from skisnow.workflows._templates import TEMPLATES, CycleTemplate, template_history
 
 __all__ = [
@@ -59,7 +58,6 @@ __all__ = [
     "FleetComparison",
     "FleetEntry",
     "FleetSki",
-    "KickContact",
     "LoadHistory",
     "PairDistance",
     "Pairing",
@@ -67,7 +65,6 @@ __all__ = [
     "check_positions",
     "compare_fleet",
     "kick_contact_summary",
-    "kick_zone_contact",
     "match_pairs",
     "pair_distance",
     "rank_across_snow",

@@ -19,16 +19,9 @@ from typing import Literal
 import numpy as np
 
 from skisnow._errors import InputError, UnsupportedLoadError
-from skisnow.contact import effective_modulus
 from skisnow.workflows._history import LoadHistory, check_positions
 from skisnow.workflows._skis import FleetSki, resolve_ski
-from skisnow.workflows._solve import (
-    choose_route,
-    kick_zone_contact,
-    loaded_profiles,
-    solve_loaded,
-    stations,
-)
+from skisnow.workflows._solve import choose_route, loaded_profiles, solve_loaded, stations
 
 __all__ = ["UNLOADED_MASS", "ZONES", "kick_contact_summary", "run_cycle"]
 
@@ -36,12 +29,14 @@ __all__ = ["UNLOADED_MASS", "ZONES", "kick_contact_summary", "run_cycle"]
 #: the lightest load the camber bench (and the shipped networks) cover.
 UNLOADED_MASS: float = 5.0
 
-#: The zones reported per frame.
-ZONES: tuple[str, ...] = ("rear", "middle", "front", "total")
+#: The zones reported per frame (``kick``: the contact between the kick-zone marks, whatever
+#: patch it belongs to — where the grip wax touches the snow; empty on a skate ski).
+ZONES: tuple[str, ...] = ("rear", "middle", "front", "total", "kick")
 
 _ZONE_FIELDS = {
     "length": ("m", "contact length"),
     "area": ("m2", "contact area"),
+    "force": ("N", "force carried"),
     "mean_pressure": ("Pa", "mean contact pressure (force / area)"),
     "max_pressure": ("Pa", "peak contact pressure"),
     "load_share": ("1", "share of the load carried"),
@@ -67,7 +62,7 @@ def run_cycle(
     history
         Force and centre of pressure over time (SI).
     snow_modulus
-        Young's modulus of the snow [Pa] (E' from eq. 2 with the default ski base).
+        Young's modulus of the snow [Pa] (E' of eq. 2 with the default ski base).
     profile_source
         ``'auto'``: the shipped network where it exists and every loaded frame lies in its
         trained domain, else the beam (the dataset's ``route_note`` says why); ``'network'`` or
@@ -82,10 +77,12 @@ def run_cycle(
     Returns
     -------
     xarray.Dataset
-        Dimension ``time`` [s] (and ``zone``, ``x``): ``force``, ``load_position``,
-        ``loaded``; per zone ``length``, ``area``, ``mean_pressure``, ``max_pressure``,
-        ``load_share``, ``patches``; ``kick_contact`` (bool), ``kick_length``, ``kick_force``,
-        ``kick_share``; ``translation``, ``rotation``, ``converged``; with ``keep_fields``
+        Dimension ``time`` [s] (and ``zone``, ``x``): ``load`` (the force on the ski [N]),
+        ``load_position``,
+        ``loaded``; per zone of :data:`ZONES` ``length``, ``area``, ``force``,
+        ``mean_pressure``, ``max_pressure``, ``load_share``, ``patches``; ``kick_contact``
+        (the grip wax touches: contact between the kick-zone marks); ``translation``,
+        ``rotation``, ``converged``; with ``keep_fields``
         ``height``, ``pressure``, ``snow_displacement`` over (time, x). SI units in ``attrs``.
         ``attrs`` also carry the route, its note, the history's source and the ski.
 
@@ -113,15 +110,11 @@ def run_cycle(
     if not loaded.all():
         # the unloaded ski: its free camber, shown in figures (not solved)
         heights[~loaded] = fs.ski.free_camber(x)
-    modulus = effective_modulus(snow_modulus)
-
     nz = len(ZONES)
     zone_vals = {k: np.zeros((n_t, nz)) for k in _ZONE_FIELDS}
     for k in ("mean_pressure", "max_pressure"):
         zone_vals[k][:] = np.nan  # not defined without contact
     patches = np.zeros((n_t, nz), dtype=np.int64)
-    kick = {k: np.zeros(n_t) for k in ("length", "force", "share")}
-    kick_touch = np.zeros(n_t, dtype=bool)
     translation = np.full(n_t, np.nan)
     rotation = np.full(n_t, np.nan)
     converged = np.ones(n_t, dtype=bool)
@@ -134,29 +127,28 @@ def run_cycle(
     for done, i in enumerate(range(n_t), start=1):
         if loaded[i]:
             try:
-                sol, zones = solve_loaded(
+                case = solve_loaded(
                     fs,
                     x,
                     heights[i],
                     mass=float(mass[i]),
                     load_position=float(history.load_position[i]),
-                    modulus=modulus,
-                    initial_pressure=start,
+                    snow_modulus=snow_modulus,
+                    route=route,
+                    start=start,
                 )
             except UnsupportedLoadError as exc:
                 raise InputError(
                     f"{history.name}: frame at t = {history.time[i]:g} s "
                     f"({mass[i]:.1f} kg at {history.load_position[i] * 1e3:.0f} mm): {exc}"
                 ) from exc
+            sol, zones = case.solution, case.zones
             start = sol.pressure
             for j, name in enumerate(ZONES):
                 z = zones[name]
                 for k in _ZONE_FIELDS:
                     zone_vals[k][i, j] = getattr(z, k)
                 patches[i, j] = z.patches
-            kc = kick_zone_contact(sol, fs.ski.kick_zone)
-            kick_touch[i] = kc.touching
-            kick["length"][i], kick["force"][i], kick["share"][i] = kc.length, kc.force, kc.share
             translation[i], rotation[i] = sol.translation, sol.rotation
             converged[i] = sol.converged
             if keep_fields:
@@ -167,7 +159,7 @@ def run_cycle(
 
     tz = ("time", "zone")
     data = {
-        "force": ("time", history.force, {"units": "N", "long_name": "normal force on the ski"}),
+        "load": ("time", history.force, {"units": "N", "long_name": "normal force on the ski"}),
         "load_position": (
             "time",
             history.load_position,
@@ -175,10 +167,11 @@ def run_cycle(
         ),
         "loaded": ("time", loaded, {"long_name": f"load >= {UNLOADED_MASS:g} kg (solved)"}),
         "patches": (tz, patches, {"long_name": "contact patches"}),
-        "kick_contact": ("time", kick_touch, {"long_name": "grip wax touches the snow"}),
-        "kick_length": ("time", kick["length"], {"units": "m"}),
-        "kick_force": ("time", kick["force"], {"units": "N"}),
-        "kick_share": ("time", kick["share"], {"units": "1"}),
+        "kick_contact": (
+            "time",
+            zone_vals["length"][:, ZONES.index("kick")] > 0,
+            {"long_name": "grip wax touches the snow (contact between the kick-zone marks)"},
+        ),
         "translation": ("time", translation, {"units": "m"}),
         "rotation": ("time", rotation, {"units": "rad"}),
         "converged": ("time", converged, {}),
@@ -203,7 +196,6 @@ def run_cycle(
             "history": history.name,
             "history_source": history.source,
             "snow_modulus": float(snow_modulus),
-            "equivalent_modulus": float(modulus),
             "route": route,
             "route_note": note or "",
             "n_points": int(x.size),
@@ -246,6 +238,6 @@ def kick_contact_summary(ds) -> dict[str, float | int]:
         "first_touch": float(t[touch][0]) if touch.any() else float("nan"),
         "last_touch": float(t[touch][-1]) if touch.any() else float("nan"),
         "episodes": len(_runs(touch)),
-        "max_kick_share": float(np.max(ds["kick_share"].values)),
-        "max_kick_length": float(np.max(ds["kick_length"].values)),
+        "max_kick_share": float(np.max(ds["load_share"].sel(zone="kick").values)),
+        "max_kick_length": float(np.max(ds["length"].sel(zone="kick").values)),
     }

@@ -17,16 +17,8 @@ from typing import Any, Literal
 import numpy as np
 
 from skisnow._errors import InputError, SkisnowError
-from skisnow.contact import effective_modulus
 from skisnow.workflows._skis import FleetSki, resolve_fleet
-from skisnow.workflows._solve import (
-    KickContact,
-    choose_route,
-    kick_zone_contact,
-    loaded_profiles,
-    solve_loaded,
-    stations,
-)
+from skisnow.workflows._solve import choose_route, loaded_profiles, solve_loaded, stations
 
 __all__ = [
     "CRITERIA",
@@ -41,20 +33,21 @@ __all__ = [
 #: The reference load position [m]: 120 mm behind the balance point, as in the paper's figures.
 DEFAULT_LOAD_POSITION = -0.120
 _LOADS = {"half": 0.5, "full": 1.0}
-_ZONES = ("rear", "middle", "front", "total")
+_ZONES = ("rear", "middle", "front", "total", "kick")
 
 
 @dataclass(frozen=True, kw_only=True)
 class FleetEntry:
-    """One ski of a comparison: its metrics and its two contact cases (SI units)."""
+    """One ski of a comparison: its metrics and its two contact cases (SI units).
+
+    ``cases`` maps ``'half'`` and ``'full'`` (body weight) to :class:`skisnow.pipeline.Case`.
+    """
 
     ski: FleetSki
     route: str
     route_note: str | None
     metrics: Any  # skisnow.ski.SkiMetrics
-    solutions: dict[str, Any] = field(repr=False)  # 'half' / 'full' -> ContactSolution
-    zones: dict[str, Any] = field(repr=False)  # 'half' / 'full' -> ZoneMetrics
-    kick: dict[str, KickContact]
+    cases: dict[str, Any] = field(repr=False)
 
     def record(self) -> dict[str, Any]:
         """One flat record in field units (mm, cm², kPa, kg, N/mm) — a row of the table."""
@@ -71,7 +64,7 @@ class FleetEntry:
             "stiffness_n_per_mm": m.stiffness * 1e-3,
         }
         for load in _LOADS:
-            z = self.zones[load]
+            z = self.cases[load].zones
             for name in _ZONES:
                 zone = z[name]
                 p = f"{load}_{name}"
@@ -80,10 +73,7 @@ class FleetEntry:
                 rec[f"{p}_mean_pressure_kpa"] = zone.mean_pressure * 1e-3
                 rec[f"{p}_peak_pressure_kpa"] = zone.max_pressure * 1e-3
                 rec[f"{p}_load_share"] = zone.load_share
-            k = self.kick[load]
-            rec[f"{load}_kick_contact"] = k.touching
-            rec[f"{load}_kick_length_mm"] = k.length * 1e3
-            rec[f"{load}_kick_share"] = k.share
+            rec[f"{load}_kick_contact"] = z["kick"].length > 0
         return rec
 
 
@@ -134,7 +124,7 @@ CRITERIA: dict[str, Criterion] = {
             name="kick-share",
             description="share of the load carried between the kick-zone marks at full body "
             "weight; lower first (the grip wax stays off the snow while gliding)",
-            column="full_kick_share",
+            column="full_kick_load_share",
             better="lower",
         ),
         Criterion(
@@ -206,7 +196,7 @@ def _entry(
     fs: FleetSki,
     *,
     body_mass: float,
-    modulus: float,
+    snow_modulus: float,
     load_position: float,
     n_points: int,
 ) -> FleetEntry:
@@ -217,20 +207,25 @@ def _entry(
     positions = np.full(masses.size, load_position)
     route, note = choose_route(fs, masses, positions, x)
     heights = loaded_profiles(fs, masses, positions, x, route=route)
-    sols, zones, kicks = {}, {}, {}
-    for key, m, h in zip(_LOADS, masses, heights, strict=True):
-        sol, z = solve_loaded(fs, x, h, mass=m, load_position=load_position, modulus=modulus)
-        sols[key], zones[key] = sol, z
-        kicks[key] = kick_zone_contact(sol, fs.ski.kick_zone)
+    cases = {
+        key: solve_loaded(
+            fs,
+            x,
+            h,
+            mass=m,
+            load_position=load_position,
+            snow_modulus=snow_modulus,
+            route=route,
+        )
+        for key, m, h in zip(_LOADS, masses, heights, strict=True)
+    }
     metrics = ski_metrics(fs.ski, body_mass=body_mass, load_position=load_position)
     return FleetEntry(
         ski=fs,
         route=route,
         route_note=note,
         metrics=metrics,
-        solutions=sols,
-        zones=zones,
-        kick=kicks,
+        cases=cases,
     )
 
 
@@ -271,7 +266,6 @@ def compare_fleet(
     """
     _check_inputs(body_mass, snow_modulus, ski_model)
     resolved, failures = resolve_fleet(list(skis))
-    modulus = effective_modulus(snow_modulus)
     entries = []
     for done, fs in enumerate(resolved, start=1):
         try:
@@ -279,7 +273,7 @@ def compare_fleet(
                 _entry(
                     fs,
                     body_mass=body_mass,
-                    modulus=modulus,
+                    snow_modulus=snow_modulus,
                     load_position=load_position,
                     n_points=n_points,
                 )
@@ -369,17 +363,18 @@ def rank_across_snow(
         )
         start = None
         for j, e in enumerate(moduli):
-            sol, zones = solve_loaded(
+            case = solve_loaded(
                 fs,
                 x,
                 h,
                 mass=m,
                 load_position=comparison.load_position,
-                modulus=effective_modulus(float(e)),
-                initial_pressure=start,
+                snow_modulus=float(e),
+                route=route,
+                start=start,
             )
-            start = sol.pressure
-            values[i, j] = _value(crit, zones, kick_zone_contact(sol, fs.ski.kick_zone))
+            start = case.solution.pressure
+            values[i, j] = _value(crit, case.zones)
             done += 1
             if progress is not None:
                 progress(done, total)
@@ -405,12 +400,9 @@ def rank_across_snow(
     )
 
 
-def _value(crit: Criterion, zones: Any, kick: KickContact) -> float:
+def _value(crit: Criterion, zones: Any) -> float:
     """The criterion's column computed from one full-body-weight contact (field units)."""
-    column = crit.column
-    if column == "full_kick_share":
-        return kick.share
-    _, zone, *rest = column.split("_")
+    _, zone, *rest = crit.column.split("_")
     quantity = "_".join(rest)
     z = zones[zone]
     return {

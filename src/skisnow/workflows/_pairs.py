@@ -29,10 +29,9 @@ import numpy as np
 
 from skisnow._errors import InputError, SkisnowError
 from skisnow.constants import STANDARD_GRAVITY
-from skisnow.contact import effective_modulus
 from skisnow.workflows._fleet import DEFAULT_LOAD_POSITION
 from skisnow.workflows._skis import FleetSki, resolve_fleet
-from skisnow.workflows._solve import choose_route, loaded_profiles, solve_loaded
+from skisnow.workflows._solve import choose_route, loaded_profiles, solve_loaded, stations
 
 __all__ = [
     "CAMBER_TOLERANCE",
@@ -77,13 +76,23 @@ class _Curves:
     load: float
 
 
-def _curves(fs: FleetSki, *, body_mass: float, load_position: float, modulus: float, n_points):
+def _curves(
+    fs: FleetSki, *, body_mass: float, load_position: float, snow_modulus: float, n_points: int
+) -> _Curves:
     ski = fs.ski
-    x = np.linspace(ski.x_tail, ski.x_tip, int(n_points))
+    x = stations(fs, n_points)
     m, p = np.array([body_mass]), np.array([load_position])
     route, _ = choose_route(fs, m, p, x)
     (h,) = loaded_profiles(fs, m, p, x, route=route)
-    sol, _ = solve_loaded(fs, x, h, mass=body_mass, load_position=load_position, modulus=modulus)
+    sol = solve_loaded(
+        fs,
+        x,
+        h,
+        mass=body_mass,
+        load_position=load_position,
+        snow_modulus=snow_modulus,
+        route=route,
+    ).solution
     grid = np.arange(np.ceil(ski.x_tail / _DX), np.floor(ski.x_tip / _DX) + 1) * _DX
     return _Curves(
         x=grid,
@@ -139,13 +148,12 @@ def pair_distance(
     skis, failures = resolve_fleet([a, b])
     if failures:
         raise InputError("; ".join(f"{s}: {m}" for s, m in failures))
-    modulus = effective_modulus(snow_modulus)
     ca, cb = (
         _curves(
             fs,
             body_mass=body_mass,
             load_position=load_position,
-            modulus=modulus,
+            snow_modulus=snow_modulus,
             n_points=n_points,
         )
         for fs in skis
@@ -216,7 +224,6 @@ def match_pairs(
     if not (np.isfinite(body_mass) and 20.0 <= body_mass <= 150.0):
         raise InputError(f"body mass must be within 20..150 kg, got {body_mass:g} kg")
     resolved, failures = resolve_fleet(list(skis))
-    modulus = effective_modulus(snow_modulus)
     curves, ok = [], []
     for done, fs in enumerate(resolved, start=1):
         try:
@@ -225,7 +232,7 @@ def match_pairs(
                     fs,
                     body_mass=body_mass,
                     load_position=load_position,
-                    modulus=modulus,
+                    snow_modulus=snow_modulus,
                     n_points=n_points,
                 )
             )

@@ -1,41 +1,32 @@
-"""The chain the workflows run per load case: loaded profile → contact → zones (SI units).
+"""The load cases of a workflow through the one-case pipeline (SI units).
 
-Kalliorinne et al. (2023): the loaded camber profile h = f(x, m, x_m) (eq. 1; the shipped
-network, or the Euler–Bernoulli beam on the bench plane) pressed into the elastic half-space of
-modulus E' (eq. 2) with force and moment balance about the load point (eq. 3). Profiles of many
-load cases are computed in one batched network call; contacts can be warm-started.
+Every case is :func:`skisnow.pipeline.solve_case` (Kalliorinne et al. 2023: the loaded camber
+profile h = f(x, m, x_m), eq. 1, pressed into the elastic half-space with force and moment
+balance, eq. 2–3, and grouped into zones). What the workflows add: the profiles of many load
+cases at once (one batched network call even when the load position changes from case to case,
+as along a stride), the choice of the profile route, and warm starts along a sequence.
 """
 
 from __future__ import annotations
 
 import warnings
-from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
 
 from skisnow._errors import DomainWarning, InputError
-from skisnow.constants import STANDARD_GRAVITY
 from skisnow.workflows._skis import FleetSki
 
-__all__ = [
-    "KickContact",
-    "ProfileRoute",
-    "choose_route",
-    "kick_zone_contact",
-    "loaded_profiles",
-    "solve_loaded",
-    "stations",
-]
+__all__ = ["ProfileRoute", "choose_route", "loaded_profiles", "solve_loaded", "stations"]
 
 ProfileRoute = Literal["network", "beam"]
 
 
 def stations(fs: FleetSki, n_points: int) -> np.ndarray:
-    """``n_points`` uniform stations [m] from tail to tip of the running surface."""
-    if int(n_points) < 16:
-        raise InputError(f"n_points must be at least 16, got {n_points}")
-    return np.linspace(fs.ski.x_tail, fs.ski.x_tip, int(n_points))
+    """The stations [m] of the pipeline's grid convention on the ski."""
+    from skisnow.pipeline import stations as pipeline_stations
+
+    return pipeline_stations(fs.ski, n_points)
 
 
 def choose_route(
@@ -65,6 +56,8 @@ def choose_route(
         if requested == "network":
             raise InputError(f"{fs.label}: no camber network exists for this ski; use the beam")
         return "beam", None
+    if masses.size == 0:
+        return "network", None
     from skisnow.ski import shipped_network
 
     bad = shipped_network(fs.network).domain.violations(x, masses, positions)
@@ -72,7 +65,7 @@ def choose_route(
         return "network", None
     note = (
         f"{fs.label}: outside the camber network's trained domain ({'; '.join(bad)}): "
-        "the beam route is used for every frame instead of extrapolating the network"
+        "the beam route is used instead of extrapolating the network"
     )
     return "beam", note
 
@@ -85,9 +78,10 @@ def loaded_profiles(
     *,
     route: ProfileRoute,
 ) -> np.ndarray:
-    """Loaded profiles h [m] of k load cases, shape ``(k, x.size)`` (eq. 1).
+    """Loaded profiles h [m] of k load cases (m_k, x_m,k), shape ``(k, x.size)`` (eq. 1).
 
-    The network predicts all cases in one call; the beam solves them one by one.
+    The network predicts all cases in one call, whatever their load positions; the beam solves
+    them one by one through :func:`skisnow.pipeline.loaded_profiles` (cached per process).
     """
     masses = np.atleast_1d(np.asarray(masses, dtype=float))
     positions = np.broadcast_to(np.asarray(positions, dtype=float), masses.shape)
@@ -100,11 +94,14 @@ def loaded_profiles(
             warnings.simplefilter("error", DomainWarning)  # choose_route guarantees the domain
             h = shipped_network(fs.network).predict(x, masses, positions)  # type: ignore[arg-type]
         return np.asarray(h, dtype=float).reshape(masses.size, x.size)
-    from skisnow.ski import solve_beam
+    from skisnow.pipeline import loaded_profiles as pipeline_profiles
 
     out = np.empty((masses.size, x.size))
     for row, m, p in zip(out, masses, positions, strict=True):
-        row[:] = solve_beam(fs.ski, mass=float(m), load_position=float(p)).sample(x)
+        _, h = pipeline_profiles(
+            fs.ski, (float(m),), float(p), profile_source="beam", n_points=x.size, missing="raise"
+        )
+        row[:] = h[0]
     return out
 
 
@@ -115,65 +112,23 @@ def solve_loaded(
     *,
     mass: float,
     load_position: float,
-    modulus: float,
-    initial_pressure: np.ndarray | None = None,
+    snow_modulus: float,
+    route: ProfileRoute,
+    start: np.ndarray | None = None,
 ):
-    """Contact of one loaded profile on snow of equivalent modulus E' [Pa] (eq. 2–3).
+    """One case of a loaded profile on snow of modulus E [Pa], through
+    :func:`skisnow.pipeline.solve_case` (``start`` warm-starts the contact iteration).
 
-    Returns ``(ContactSolution, ZoneMetrics)``; ``initial_pressure`` warm-starts the solver.
+    Returns the :class:`~skisnow.pipeline.Case`.
     """
-    from skisnow.contact import contact_zones, solve_contact
+    from skisnow.pipeline import solve_case
 
-    sol = solve_contact(
-        x,
-        height,
-        load=float(mass) * STANDARD_GRAVITY,
+    return solve_case(
+        fs.ski,
+        mass=float(mass),
         load_position=float(load_position),
-        modulus=float(modulus),
-        model="strip",
-        width=fs.ski.width,
-        initial_pressure=initial_pressure,
-    )
-    return sol, contact_zones(sol, kick_zone=fs.ski.kick_zone)
-
-
-@dataclass(frozen=True, kw_only=True)
-class KickContact:
-    """Where the grip wax meets the snow: contact between the kick-zone marks (SI).
-
-    Attributes
-    ----------
-    touching
-        Any station between the marks carries pressure.
-    length
-        Contact length between the marks [m].
-    force
-        Force carried between the marks [N]; ``share`` = force / total load.
-    """
-
-    touching: bool
-    length: float
-    force: float
-    share: float
-
-
-def kick_zone_contact(solution, kick_zone: tuple[float, float] | None) -> KickContact:
-    """Contact between the kick-zone marks of a :class:`~skisnow.contact.ContactSolution`.
-
-    Counts every station in ``[start, end]`` whatever patch it belongs to — the question a
-    classic skier asks is whether the grip wax touches, not how a patch is named. Skate skis
-    (no kick zone): zeros.
-    """
-    if kick_zone is None:
-        return KickContact(touching=False, length=0.0, force=0.0, share=0.0)
-    x = solution.x
-    inside = (x >= kick_zone[0]) & (x <= kick_zone[1]) & solution.contact_along
-    q = solution.line_load
-    force = float(q[inside].sum() * solution.dx)
-    total = float(q.sum() * solution.dx)
-    return KickContact(
-        touching=bool(inside.any()),
-        length=float(inside.sum() * solution.dx),
-        force=force,
-        share=force / total if total > 0 else 0.0,
+        snow_modulus=float(snow_modulus),
+        profile_source=route,
+        profile=(x, height),
+        start=start,
     )

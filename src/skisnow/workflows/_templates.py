@@ -4,11 +4,13 @@ Three techniques, each a table of knots (phase of the cycle, normal force on the
 fraction of body weight BW, centre of pressure x_m in mm from the balance point) joined by the
 shape-preserving PCHIP interpolant (no overshoot: the force never goes negative between knots).
 
-HONESTY NOTE. These are *approximated shapes*, not digitised curves: the knots reproduce the
+HONESTY NOTE. These are *approximated shapes*, not digitised curves: the knots follow the
 features the cited studies describe — the phases and their timing, the number and order of the
-force peaks, the direction in which the centre of pressure moves — with peak values chosen
-within the ranges those studies report. The numbers used are the knots below, printed by
-``skisnow cycle --template NAME --show-template``. For real questions, use measured histories
+force peaks, the direction in which the centre of pressure moves. The peak values are our
+assumptions, of the order of those reported there, constrained by one balance law: over a
+periodic cycle the vertical impulse balances, 2·mean(F_ski) + mean(F_poles) = BW, with the
+poles' mean vertical share stated per template. The numbers used are the knots below, printed
+by ``skisnow cycle --template NAME --show-template``. For real questions use measured histories
 (force bindings, pressure insoles) through :func:`~skisnow.workflows.read_load_history`.
 
 Foot on the ski: the centre of pressure is placed between the heel at −240 mm and the ball of
@@ -19,24 +21,25 @@ position is 120 mm behind the balance point, mid-foot).
 * ``diagonal`` — diagonal stride, one ski over one cycle (1.3 s). Ski plant, weight transfer
   with a first peak of 0.95 BW, glide at 0.7 BW while the opposite pole is planted, the
   unloading before the kick (0.55 BW), the kick on the forefoot with a peak of 1.8 BW, toe-off
-  at 56 % of the cycle, then the unloaded swing; poles 11 % of BW on average. After Komi (1987), *Int. J. Sport Biomech.* 3, 370–381 (6 m force-plate track:
-  unloading before a short, high kick peak) and Vähäsöyrinki et al. (2008), *Med. Sci. Sports
-  Exerc.* 40(6), 1111–1116 (leg force through a force-plate binding, kick a short fraction of
-  the cycle). A kick of 1.8 BW exceeds the shipped networks' 130 kg for skiers above 72 kg.
+  at 56 % of the cycle, then the unloaded swing; poles 11 % of BW on average. After Komi
+  (1987), *Int. J. Sport Biomech.* 3, 370–381 (6 m force-plate track: an unloading before a
+  short, high kick peak) and Vähäsöyrinki et al. (2008), *Med. Sci. Sports Exerc.* 40(6),
+  1111–1116 (ski and pole forces over the cycle, the kick a short fraction of it). A kick of
+  1.8 BW exceeds the shipped networks' 130 kg for skiers above 72 kg.
 * ``double_poling`` — double poling, one ski (both carry the same), 1.1 s. Both skis stay on
   the snow; each carries about half the body weight, less while the poles carry load (down to
   0.25 BW per ski in the poling phase) and more when the body is raised in the recovery
-  (0.60 BW); poles 10 % of BW on average; the centre of pressure is on the forefoot at pole plant and moves to the heel in
-  the recovery. After Holmberg et al. (2005), *Med. Sci. Sports Exerc.* 37(5), 807–818 (plantar
-  forces by pressure insoles; skiers lean forward onto the forefoot before pole plant) and
-  Lindinger & Holmberg (2011), *Eur. J. Appl. Physiol.* 111, 1103–1119 (leg and pole force
-  patterns over the double-poling cycle).
+  (0.60 BW); poles 10 % of BW on average. The centre of pressure is on the forefoot at pole
+  plant and moves to the heel in the recovery. After Holmberg et al. (2005), *Med. Sci. Sports
+  Exerc.* 37(5), 807–818 (plantar forces by pressure insoles; the skiers lean forward onto the
+  forefoot before pole plant) and Lindinger & Holmberg (2011), *Eur. J. Appl. Physiol.* 111,
+  1103–1119 (leg and pole force patterns over the double-poling cycle).
 * ``skate_g3`` — V2 skating (gear 3: one pole push per leg push), one ski, 1.6 s. Ski set down,
   weight transfer to 1.0 BW, glide at 0.85 BW, the push-off with a peak of 1.35 BW on the
-  mid-foot, lift-off at 52 % of the cycle, then the swing; poles 9 % of BW on average. After Smith (2002), "Biomechanics of
-  cross country skiing", in Rusko (ed.), *Cross Country Skiing*, Blackwell, pp. 32–61 (skating
-  ski-force patterns). The ski is on its edge during the push; the contact model has no
-  edging, the normal force is applied as if the ski were flat.
+  mid-foot, lift-off at 52 % of the cycle, then the swing; poles 9 % of BW on average. After
+  Smith (2002), "Biomechanics of cross country skiing", in Rusko (ed.), *Cross Country
+  Skiing*, Blackwell, pp. 32–61 (skating ski-force patterns). The ski is on its edge during the
+  push; the contact model has no edging: the normal force is applied as if the ski were flat.
 """
 
 from __future__ import annotations
