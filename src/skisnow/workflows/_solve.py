@@ -63,6 +63,11 @@ def choose_route(
     bad = shipped_network(fs.network).domain.violations(x, masses, positions)
     if not bad:
         return "network", None
+    if requested == "network":
+        raise InputError(
+            f"{fs.label}: the camber network would extrapolate ({'; '.join(bad)}); use the "
+            "beam (profile source auto or beam)"
+        )
     note = (
         f"{fs.label}: outside the camber network's trained domain ({'; '.join(bad)}): "
         "the beam route is used instead of extrapolating the network"
