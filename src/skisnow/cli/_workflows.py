@@ -186,8 +186,7 @@ def compare(
     notes = [e.route_note for e in cmp.entries if e.route_note]
     files: list[str] = []
     if out is not None:
-        from skisnow.plot import plot_fleet, plot_snow_ranking
-        from skisnow.plot._style import save_figure
+        from skisnow.plot import plot_fleet, plot_snow_ranking, save_figure
 
         files += [str(write_csv(out / "comparison.csv", records))]
         files += [str(write_csv(out / "ranking.csv", ranking))]
@@ -511,8 +510,7 @@ def cycle(
     for name, ds in results:
         suffix = f"_{name}" if len(results) > 1 else ""
         if out is not None:
-            from skisnow.plot import plot_cycle
-            from skisnow.plot._style import save_figure
+            from skisnow.plot import plot_cycle, save_figure
 
             files.append(str(write_csv(out / f"cycle{suffix}.csv", cycle_records(ds))))
             files += [str(p) for p in save_figure(plot_cycle(ds), out / f"cycle{suffix}")]
