@@ -142,6 +142,9 @@ def predict(
     notes = [str(w.message) for w in caught if issubclass(w.category, DomainWarning)]
     for n in notes:
         err_console.print(f"[yellow]warning:[/] {n}")
+    from skisnow.ski import SHIPPED_SKIS, breitschaedel_contact, get_ski
+
+    kick = get_ski(net.ski).kick_zone if net.ski in SHIPPED_SKIS else None
     i_min = int(np.argmin(np.where(np.abs(x) < 0.5 * (d.x_max - d.x_min) / 2, h, np.inf)))
     summary = {
         "ski": net.ski,
@@ -150,7 +153,8 @@ def predict(
         "points": int(x.size),
         "camber_height_at_balance_point_mm": float(np.interp(0.0, x, h) * 1e3),
         "min_height_mid_ski_mm": float(h[i_min] * 1e3),
-        "length_below_50um_mm": float(np.sum(h < 50e-6) * dx_mm),
+        # Breitschädel (2012): gap to the plane the ski rests on below 50 µm
+        "length_below_50um_mm": float(np.sum(breitschaedel_contact(x, h, kick_zone=kick)) * dx_mm),
         "max_ensemble_spread_um": float(spread.max() * 1e6),
         "members": len(net.members),
         "in_trained_domain": not notes,

@@ -21,8 +21,9 @@ Per zone, in total and between the kick-zone marks (``kick``): start, end [m] (o
 edges), length [m] (sum of patch lengths — the paper's "two patches that amount to 132 mm"),
 area [m²], force [N], load share, mean pressure (force/area) and max pressure [Pa], number of
 patches and penetration depth (largest snow displacement in the zone) [m]. Beside them, the
-Breitschädel criterion (contact wherever the loaded camber height, measured from its lowest
-point, is below 50 µm) with the same grouping.
+Breitschädel (2012) criterion with the same grouping: contact wherever the loaded camber height,
+measured from the plane the ski rests on (the line through the lowest points of its two glide
+zones, :func:`skisnow.ski.support_line`), is below 50 µm.
 """
 
 from __future__ import annotations
@@ -34,11 +35,9 @@ import numpy as np
 
 from skisnow._errors import InputError
 from skisnow.contact._solver import ContactSolution
+from skisnow.ski import BREITSCHAEDEL_THRESHOLD, breitschaedel_contact
 
 __all__ = ["BREITSCHAEDEL_THRESHOLD", "Zone", "ZoneMetrics", "contact_zones", "patches"]
-
-#: Breitschädel (2010): the ski is taken to touch the snow where its camber height is < 50 µm.
-BREITSCHAEDEL_THRESHOLD = 50e-6
 
 ZONE_NAMES = ("rear", "middle", "front")
 
@@ -300,9 +299,14 @@ def contact_zones(
         "kick", _between(runs, x, kick_zone), x, dx, line_force, line_area, pmax, pen, total_force
     )
 
-    # Breitschädel: contact wherever the loaded camber height is below the threshold
-    hb = h_along - np.min(h_along)
-    b_runs = patches(hb < threshold)
+    # Breitschädel (2012): contact wherever the gap to the plane the ski rests on is below the
+    # threshold (one definition: skisnow.ski.breitschaedel_contact)
+    rows = np.isfinite(h_along)
+    b_mask = np.zeros(x.size, dtype=bool)
+    b_mask[rows] = breitschaedel_contact(
+        x[rows], h_along[rows], kick_zone=kick_zone, threshold=threshold
+    )
+    b_runs = patches(b_mask)
     b_groups, _ = _group(
         b_runs, x, h_along, solution.load_position, kick_zone, split_used if runs else split
     )

@@ -26,7 +26,9 @@ Equation map (Kalliorinne et al. 2023 unless named):
 * Practitioners' metrics (Breitschädel 2012): camber height :func:`camber_height`, wax pocket
   :func:`wax_pocket`, :func:`wax_pocket_length`, closing load :func:`closing_load`,
   :func:`closing_load_from_bench`, stiffness :func:`ski_stiffness`, contact lengths with the
-  50 µm criterion :func:`contact_lengths`, :func:`contact_patches`; all of them for one ski:
+  50 µm criterion measured from the plane the ski rests on (:func:`support_line`,
+  :func:`height_above_support`, :func:`breitschaedel_contact`, the one definition skisnow
+  uses) :func:`contact_lengths`, :func:`contact_patches`; all of them for one ski:
   :func:`ski_metrics` → :class:`SkiMetrics`.
 
 Eq. 2 (the equivalent modulus) and eq. 3 (the contact with force and moment balance) are
@@ -47,8 +49,13 @@ from skisnow.ski._beam import (
     solve_beam,
     three_point_bending_deflection,
 )
-from skisnow.ski._metrics import (
+from skisnow.ski._breitschaedel import (
     BREITSCHAEDEL_THRESHOLD,
+    breitschaedel_contact,
+    height_above_support,
+    support_line,
+)
+from skisnow.ski._metrics import (
     CLOSED_THRESHOLD,
     camber_height,
     contact_lengths,
@@ -103,6 +110,7 @@ __all__ = [
     "TrainingProgress",
     "beam_stiffness_matrix",
     "bench_grid",
+    "breitschaedel_contact",
     "camber_height",
     "camber_profile",
     "cantilever_tip_deflection",
@@ -111,6 +119,7 @@ __all__ = [
     "contact_lengths",
     "contact_patches",
     "get_ski",
+    "height_above_support",
     "hermite_interpolate",
     "load_network",
     "loaded_profile",
@@ -120,6 +129,7 @@ __all__ = [
     "ski_metrics",
     "ski_stiffness",
     "solve_beam",
+    "support_line",
     "three_point_bending_deflection",
     "train_network",
     "wax_pocket",

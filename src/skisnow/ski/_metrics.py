@@ -25,6 +25,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from skisnow._errors import InputError
 from skisnow.constants import STANDARD_GRAVITY
+from skisnow.ski._breitschaedel import BREITSCHAEDEL_THRESHOLD, breitschaedel_contact
 
 __all__ = [
     "BREITSCHAEDEL_THRESHOLD",
@@ -38,8 +39,6 @@ __all__ = [
     "wax_pocket_length",
 ]
 
-#: Breitschädel's contact criterion [m]: contact wherever the camber height is below 50 µm.
-BREITSCHAEDEL_THRESHOLD: float = 50e-6
 #: The industry's "closed" kick zone [m]: camber height below 0.1 mm.
 CLOSED_THRESHOLD: float = 0.1e-3
 #: Default practitioners' load position [m]: 80 mm behind the balance point.
@@ -111,11 +110,16 @@ def wax_pocket_length(
 
 
 def contact_patches(
-    x: ArrayLike, height: ArrayLike, *, threshold: float = BREITSCHAEDEL_THRESHOLD
+    x: ArrayLike,
+    height: ArrayLike,
+    *,
+    threshold: float = BREITSCHAEDEL_THRESHOLD,
+    kick_zone: tuple[float, float] | None = None,
 ) -> tuple[tuple[float, float], ...]:
-    """Runs of samples with h <= threshold as ((start, end), ...) [m] (first and last sample)."""
+    """Runs of samples in Breitschädel contact (:func:`breitschaedel_contact`: gap to the plane
+    the ski rests on below ``threshold``) as ((start, end), ...) [m] (first and last sample)."""
     xa, ha = _profile(x, height)
-    idx = np.flatnonzero(ha <= threshold)
+    idx = np.flatnonzero(breitschaedel_contact(xa, ha, kick_zone=kick_zone, threshold=threshold))
     if idx.size == 0:
         return ()
     cut = np.flatnonzero(np.diff(idx) > 1)
@@ -131,7 +135,7 @@ def contact_lengths(
     threshold: float = BREITSCHAEDEL_THRESHOLD,
     kick_zone: tuple[float, float] | None = None,
 ) -> dict[str, float]:
-    """Contact lengths [m] with Breitschädel's criterion h <= threshold, per zone.
+    """Contact lengths [m] with Breitschädel's criterion (:func:`breitschaedel_contact`), per zone.
 
     Zones: ``rear`` (x < kick start), ``middle`` (inside the kick zone), ``front`` (x > kick
     end), ``total``. Without a kick zone (skate skis) ``middle`` is 0 and rear/front are split,
@@ -141,6 +145,7 @@ def contact_lengths(
     (half-way to its neighbours).
     """
     xa, ha = _profile(x, height)
+    touching = breitschaedel_contact(xa, ha, kick_zone=kick_zone, threshold=threshold)
     if kick_zone is None:
         patches = contact_patches(xa, ha, threshold=threshold)
         split = 0.0
@@ -152,7 +157,7 @@ def contact_lengths(
         a = b = split
     else:
         a, b = kick_zone
-    w = _cell_widths(xa) * (ha <= threshold)
+    w = _cell_widths(xa) * touching
     return {
         "rear": float(np.sum(w[xa < a])),
         "middle": float(np.sum(w[(xa >= a) & (xa <= b)])) if kick_zone is not None else 0.0,
