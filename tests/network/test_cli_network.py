@@ -62,6 +62,12 @@ def test_train_then_predict_with_figure(tmp_path, small_bench, capsys):
     assert code == 0, out.err
     doc = json.loads(out.out)
     assert doc["widths"] == [3, 6, 6, 6, 4, 4] and doc["ski"] == "classic"
+    # 5 LM steps with the default patience of 25: either the budget ran out or LM found no
+    # improving step earlier; the status says which, as the model file records it
+    md = json.loads((tmp_path / "small.json").read_text())["metadata"]
+    stopped_early = md["lm_steps_taken"][0] < 5
+    assert doc["status"] == ("successful" if stopped_early else "max_steps_reached")
+    assert md["status"] == doc["status"]
     assert (tmp_path / "small.npz").exists() and (tmp_path / "small.json").exists()
     fig = tmp_path / "profile.png"
     code = main(

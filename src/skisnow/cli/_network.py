@@ -99,6 +99,7 @@ def train(
         "held_out_max_error_um": err["max_um"],
         "held_out_near_contact_mean_error_um": err["near_contact_mean_um"],
         "training_time_s": net.metadata["training_time_s"],
+        "status": net.metadata["status"],
     }
     if json_out:
         emit_json(doc)
