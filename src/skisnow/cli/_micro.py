@@ -12,7 +12,7 @@ import typer
 from skisnow._errors import InputError
 from skisnow._values import parse_values, sorted_unique
 from skisnow.cli._app import app
-from skisnow.cli._render import console, emit_json, err_console, print_table
+from skisnow.cli._render import console, emit_json, print_table, progress_bar
 
 __all__ = ["parse_grain_range"]
 
@@ -190,10 +190,7 @@ def bearing(
     pressure = pressure_kpa * 1e3
     if not regime.bearing_model_applies:
         notes.append("the base is softer than the ice here: the bearing model does not apply")
-    from rich.progress import Progress
-
-    with Progress(console=err_console, transient=True, disable=json_out) as bar:
-        task = bar.add_task("bearing model", total=diameters.size)
+    with progress_bar("bearing model", total=diameters.size, disable=json_out) as bar:
         sweep = micro.bearing_sweep(
             t,
             diameters=diameters,
@@ -201,7 +198,7 @@ def bearing(
             hardness=regime.ice_hardness,
             stride=stride,
             workers=workers,
-            progress=lambda done, total: bar.update(task, completed=done),
+            progress=bar,
         )
     averaged = (
         micro.grain_average(sweep.diameters, sweep.fractional_area) if diameters.size >= 2 else None

@@ -10,7 +10,7 @@ import typer
 
 from skisnow._errors import InputError
 from skisnow.cli._app import app
-from skisnow.cli._render import emit_json, err_console, print_table
+from skisnow.cli._render import emit_json, err_console, print_table, progress_bar
 
 _JSON = typer.Option(False, "--json", help="Print one JSON document to stdout, nothing else.")
 
@@ -48,29 +48,18 @@ def train(
     json_out: bool = _JSON,
 ) -> None:
     """Train the camber network h = f(x, m, x_m) on a bench file and save it."""
-    from rich.progress import BarColumn, Progress, TextColumn, TimeElapsedColumn
-
     from skisnow.io import read_bench
     from skisnow.ski import save_network, train_network
 
     data = read_bench(bench_file)
-    with Progress(
-        TextColumn("[bold]{task.description}"),
-        BarColumn(),
-        TextColumn("{task.fields[errors]}"),
-        TimeElapsedColumn(),
-        console=err_console,
-        transient=True,
-    ) as bar:
-        task = bar.add_task("train", total=None, errors="")
+    with progress_bar("train") as bar:
 
         def progress(p: Any) -> None:
-            bar.update(
-                task,
-                description=f"member {p.member + 1}/{p.n_members} {p.phase}",
-                total=p.total,
-                completed=p.step,
-                errors=(
+            bar(
+                p.step,
+                p.total,
+                label=f"member {p.member + 1}/{p.n_members} {p.phase}",
+                status=(
                     f"train rms {p.train_rms_um:.1f} µm · held-out mean {p.val_mean_um:.2f} µm, "
                     f"max {p.val_max_um:.1f} µm"
                 ),

@@ -10,22 +10,9 @@ import typer
 from skisnow._errors import InputError
 from skisnow._values import parse_values
 from skisnow.cli._app import app
-from skisnow.cli._render import emit_json, err_console, print_table
+from skisnow.cli._render import emit_json, print_table, progress_bar
 
 _JSON = typer.Option(False, "--json", help="Print one JSON document to stdout, nothing else.")
-
-
-def _progress_bar(total_label: str) -> Any:
-    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TimeElapsedColumn
-
-    return Progress(
-        f"[bold]{total_label}",
-        BarColumn(),
-        MofNCompleteColumn(),
-        TimeElapsedColumn(),
-        console=err_console,
-        transient=True,
-    )
 
 
 def ski_summary_rows() -> list[dict[str, Any]]:
@@ -95,8 +82,7 @@ def bench(
         raise InputError(f"--out {out}: use a .csv or .parquet file name")
     masses = parse_values(mass_kg, name="--mass-kg").tolist()
     positions = (parse_values(load_position_mm, name="--load-position-mm") * 1e-3).tolist()
-    with _progress_bar(f"bench {ski}") as bar:
-        task = bar.add_task("bench", total=len(set(masses)) * len(set(positions)))
+    with progress_bar(f"bench {ski}", total=len(set(masses)) * len(set(positions))) as bar:
         data = run_bench(
             sk,
             masses=masses,
@@ -104,7 +90,7 @@ def bench(
             dx=dx_mm * 1e-3,
             noise=noise_mm * 1e-3,
             seed=seed,
-            progress=lambda done, total: bar.update(task, completed=done),
+            progress=bar,
         )
     out.parent.mkdir(parents=True, exist_ok=True)
     write_bench(data, out)

@@ -9,28 +9,7 @@ import typer
 
 from skisnow._errors import SkisnowError
 from skisnow.cli._app import app
-from skisnow.cli._render import emit_json, err_console, print_table
-
-
-def _progress(total_label: str):
-    from rich.progress import (
-        BarColumn,
-        MofNCompleteColumn,
-        Progress,
-        TextColumn,
-        TimeElapsedColumn,
-        TimeRemainingColumn,
-    )
-
-    return Progress(
-        TextColumn(total_label),
-        BarColumn(),
-        MofNCompleteColumn(),
-        TimeElapsedColumn(),
-        TimeRemainingColumn(),
-        console=err_console,
-        transient=False,
-    )
+from skisnow.cli._render import emit_json, print_table, progress_bar
 
 
 @app.command()
@@ -89,30 +68,21 @@ def sweep(
         n_points=n_points,
     )
     n_chunks = len(spec.chunks())
-    bar = _progress(f"sweep {out.name}")
-    task: list = []  # the bar starts with the first finished chunk (not before the store checks)
-
-    def on_progress(done: int, total: int, key: tuple[int, int, int]) -> None:
-        if not task:
-            bar.start()
-            task.append(bar.add_task("chunks", total=total))
-        bar.update(task[0], completed=done, total=total)
-
+    # the bar starts with the first finished chunk (not before the store checks)
+    bar = progress_bar(f"sweep {out.name}", transient=False)
     try:
-        run = run_sweep(spec, out, scheduler=scheduler, workers=workers, on_progress=on_progress)
+        run = run_sweep(spec, out, scheduler=scheduler, workers=workers, on_progress=bar)
     except KeyboardInterrupt:
         # Raised as an error (exit 1): Typer turns Ctrl-C into a *returned* 130, which
         # ``cli.main`` does not propagate. Say what was kept.
-        if task:
-            bar.stop()
-        done = bar.tasks[0].completed if task else 0
+        bar.close()
+        done = bar.completed
         raise SkisnowError(
             f"sweep interrupted (Ctrl-C); {done:g} chunks of this run are safely in {out}; run "
             "the same command again to compute only the rest"
         ) from None
     finally:
-        if task and bar.live.is_started:
-            bar.stop()
+        bar.close()
     exported = None
     if netcdf is not None:
         exported = save_netcdf(open_sweep(out), netcdf)
