@@ -10,6 +10,9 @@ quadrature and equilibrium in ``tests/contact/test_reference.py``.
 * :func:`flat_punch` — a rigid flat punch of half-width a in plane strain, load per length W'
   at eccentricity e (full contact while |e| < a/2):
   p(x) = W'/(π √(a² − x²)) · (1 + 2 e x / a²), tilt θ = 8 W' e/(π E' a²).
+* :func:`winkler_free_beam` — a free beam of finite length on a Winkler foundation under a point
+  force (Hetényi 1946, *Beams on Elastic Foundation*, ch. IV), with the closed form of the
+  deflection under a central load, y = (Pλ/2k)(cosh λL + cos λL + 2)/(sinh λL + sin λL).
 """
 
 from __future__ import annotations
@@ -21,7 +24,16 @@ from numpy.typing import ArrayLike
 
 from skisnow._errors import InputError
 
-__all__ = ["FlatPunch", "HertzLine", "HertzSphere", "flat_punch", "hertz_line", "hertz_sphere"]
+__all__ = [
+    "FlatPunch",
+    "HertzLine",
+    "HertzSphere",
+    "WinklerBeam",
+    "flat_punch",
+    "hertz_line",
+    "hertz_sphere",
+    "winkler_free_beam",
+]
 
 
 def _pos(name: str, v: float) -> float:
@@ -156,4 +168,102 @@ def flat_punch(
         )
     return FlatPunch(
         load_per_length=w, half_width=a, eccentricity=e, modulus=_pos("modulus", modulus)
+    )
+
+
+# the four Krylov-type functions cosh·cos, cosh·sin, sinh·cos, sinh·sin of ξ = λx and their
+# derivative map: d/dξ F = _DERIV @ F
+_DERIV = np.array([[0, -1, 1, 0], [1, 0, 0, 1], [1, 0, 0, -1], [0, 1, 1, 0]], dtype=float)
+
+
+def _krylov(xi: np.ndarray) -> np.ndarray:
+    ch, sh, c, s = np.cosh(xi), np.sinh(xi), np.cos(xi), np.sin(xi)
+    return np.stack([ch * c, ch * s, sh * c, sh * s])
+
+
+@dataclass(frozen=True, kw_only=True)
+class WinklerBeam:
+    """A free beam of length L on a Winkler foundation under a downward point force P.
+
+    The deflection y(x) (downward, into the foundation) solves EI y⁗ + k y = P δ(x − a) on
+    [0, L] with free ends (y″ = y‴ = 0), k the foundation modulus per unit length [N/m²]
+    (Hetényi 1946, ch. IV; λ = (k/4EI)^¼). Each side of the load is a combination of
+    cosh λx·cos λx, cosh λx·sin λx, sinh λx·cos λx, sinh λx·sin λx whose eight coefficients
+    follow from the end conditions and the continuity of y, y′, y″ and the jump P/EI of y‴
+    at the load: exact, with no approximation beyond the beam equation.
+    """
+
+    length: float
+    stiffness: float
+    foundation: float
+    force: float
+    load_position: float
+    coefficients: tuple[float, ...]
+
+    @property
+    def characteristic(self) -> float:
+        """λ = (k/(4 EI))^¼ [1/m]."""
+        return float((self.foundation / (4.0 * self.stiffness)) ** 0.25)
+
+    def deflection(self, x: ArrayLike, derivative: int = 0) -> np.ndarray:
+        """y(x) [m] (downward) at 0 ≤ x ≤ L, or its ``derivative``-th derivative."""
+        x = np.asarray(x, dtype=float)
+        lam, a = self.characteristic, self.load_position
+        c = np.asarray(self.coefficients).reshape(2, 4)
+        mk = np.linalg.matrix_power(_DERIV, derivative) * lam**derivative
+        left = c[0] @ np.tensordot(mk, _krylov(lam * x), axes=1)
+        right = c[1] @ np.tensordot(mk, _krylov(lam * (x - a)), axes=1)
+        return np.where(x < a, left, right)
+
+    @property
+    def centre_deflection_closed_form(self) -> float:
+        """Hetényi's closed form under a central load, (Pλ/2k)(cosh λL + cos λL + 2)/(sinh λL +
+        sin λL) [m] (valid when the load is at L/2)."""
+        lam, ell = self.characteristic, self.length
+        return float(
+            self.force
+            * lam
+            / (2.0 * self.foundation)
+            * (np.cosh(lam * ell) + np.cos(lam * ell) + 2.0)
+            / (np.sinh(lam * ell) + np.sin(lam * ell))
+        )
+
+
+def winkler_free_beam(
+    *, length: float, stiffness: float, foundation: float, force: float, load_position: float
+) -> WinklerBeam:
+    """Free beam on a Winkler foundation (Hetényi 1946): ``length`` L [m], EI [N m²],
+    ``foundation`` k [N/m²] (pressure per settlement × width), downward ``force`` P [N] at
+    ``load_position`` a [m] from the left end (0 < a < L)."""
+    ell = _pos("length", length)
+    ei = _pos("stiffness", stiffness)
+    k = _pos("foundation", foundation)
+    p = _pos("force", force)
+    a = float(load_position)
+    if not 0.0 < a < ell:
+        raise InputError(f"load_position must lie inside (0, L) = (0, {ell}) m, got {a}")
+    lam = (k / (4.0 * ei)) ** 0.25
+
+    def rows(xi: float, derivative: int) -> np.ndarray:
+        basis = _krylov(np.asarray(xi, dtype=float))
+        return (np.linalg.matrix_power(_DERIV, derivative) @ basis) * lam**derivative
+
+    m = np.zeros((8, 8))
+    rhs = np.zeros(8)
+    # free ends: y″ = y‴ = 0 at x = 0 (left basis at ξ = 0) and x = L (right basis at λ(L − a))
+    m[0, :4], m[1, :4] = rows(0.0, 2), rows(0.0, 3)
+    m[2, 4:], m[3, 4:] = rows(lam * (ell - a), 2), rows(lam * (ell - a), 3)
+    # at the load: y, y′, y″ continuous; EI (y‴(a+) − y‴(a−)) = P
+    for d in range(4):
+        m[4 + d, :4] = -rows(lam * a, d)
+        m[4 + d, 4:] = rows(0.0, d)
+    rhs[7] = p / ei
+    coef = np.linalg.solve(m, rhs)
+    return WinklerBeam(
+        length=ell,
+        stiffness=ei,
+        foundation=k,
+        force=p,
+        load_position=a,
+        coefficients=tuple(float(c) for c in coef),
     )
