@@ -186,7 +186,11 @@ def solve_contact(
     candidates: bool | None = None,
     raise_on_failure: bool = False,
 ) -> ContactSolution:
-    """Press a rigid profile into an elastic half-space with force and moment balance (eq. 3).
+    """Press a rigid profile into an elastic half-space with force and moment balance.
+
+    Kalliorinne et al. (2023) eq. 3 (force and moment balance about the load point) on the
+    half-space of equivalent modulus E' (their eq. 2), solved by the Polonsky & Keer (1999)
+    constrained conjugate gradient (:func:`~skisnow.contact.polonsky_keer`).
 
     Parameters
     ----------
@@ -260,10 +264,14 @@ def solve_contact(
     Returns
     -------
     ContactSolution
-        Pressure [Pa], gap [m], snow displacement [m], δ [m], θ [rad], convergence report.
+        Pressure [Pa], gap [m], snow displacement [m], δ [m], θ [rad], convergence report with
+        its :class:`~skisnow.SolverStatus`.
 
     Raises
     ------
+    ConvergenceError
+        With ``raise_on_failure=True``, when the status is not successful (``.result`` holds
+        the unconverged solution).
     InputError
         NaN/inf heights, mismatched or irregular grids, non-positive modulus/load/width, a load
         position outside the profile, unknown model/control.
