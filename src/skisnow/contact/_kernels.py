@@ -32,6 +32,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import scipy.fft as sfft
 
+from skisnow._checks import positive_finite
 from skisnow._errors import InputError
 from skisnow._parallel import default_workers
 
@@ -45,13 +46,6 @@ __all__ = [
     "surface_convolution",
     "surface_kernel",
 ]
-
-
-def _positive(name: str, value: float) -> float:
-    value = float(value)
-    if not np.isfinite(value) or value <= 0.0:
-        raise InputError(f"{name} must be a finite positive number, got {value!r}")
-    return value
 
 
 def _count(name: str, value: int) -> int:
@@ -98,8 +92,8 @@ def surface_kernel(shape: tuple[int, int], dx: float, dy: float, *, modulus: flo
         u = 2/(π E') Σ_corners ±F(x ± dx/2, y ± dy/2), F(u, v) = u·asinh(v/|u|) + v·asinh(u/|v|).
     """
     nx, ny = (_count("shape[0]", shape[0]), _count("shape[1]", shape[1]))
-    dx, dy = _positive("dx", dx), _positive("dy", dy)
-    modulus = _positive("modulus", modulus)
+    dx, dy = positive_finite("dx", dx, "m"), positive_finite("dy", dy, "m")
+    modulus = positive_finite("modulus", modulus, "Pa")
     # F on the (2nx) × (2ny) grid of cell corners, then the four-corner differences: each corner
     # value is shared by four cells (4× fewer transcendental evaluations than cell by cell)
     xc = (np.arange(2 * nx, dtype=np.float64) - nx + 0.5) * dx
@@ -150,8 +144,8 @@ def strip_kernel(n: int, dx: float, width: float, *, modulus: float) -> np.ndarr
         Displacement [m] per unit pressure [Pa] at offsets ``-(n-1)·dx .. (n-1)·dx``.
     """
     n = _count("n", n)
-    dx, width = _positive("dx", dx), _positive("width", width)
-    modulus = _positive("modulus", modulus)
+    dx, width = positive_finite("dx", dx, "m"), positive_finite("width", width, "m")
+    modulus = positive_finite("modulus", modulus, "Pa")
     x = _offsets(n, dx)
     integral = _strip_primitive(x + dx / 2.0, width) - _strip_primitive(x - dx / 2.0, width)
     return 2.0 / (np.pi * modulus) * integral
@@ -171,9 +165,9 @@ def line_kernel(n: int, dx: float, *, modulus: float, reference_length: float = 
         Displacement [m] per unit pressure [Pa] at offsets ``-(n-1)·dx .. (n-1)·dx``.
     """
     n = _count("n", n)
-    dx = _positive("dx", dx)
-    modulus = _positive("modulus", modulus)
-    ref = _positive("reference_length", reference_length)
+    dx = positive_finite("dx", dx, "m")
+    modulus = positive_finite("modulus", modulus, "Pa")
+    ref = positive_finite("reference_length", reference_length, "m")
     x = _offsets(n, dx)
 
     def phi(t: np.ndarray) -> np.ndarray:  # ∫ ln(|t|/L) dt = t·ln(|t|/L) − t

@@ -21,6 +21,7 @@ from typing import Literal
 import numpy as np
 from numpy.typing import ArrayLike
 
+from skisnow._checks import positive_finite
 from skisnow._errors import InputError
 from skisnow.contact._kernels import (
     Convolution,
@@ -167,11 +168,11 @@ def build_problem(
     x, dx = _uniform_grid("x", x)
     h = np.asarray(height, dtype=np.float64)
     two_d = h.ndim == 2
-    modulus = _finite_positive("modulus (E')", modulus)
+    modulus = positive_finite("modulus (E')", modulus, "Pa")
     if control in ("moment", "load"):
         if load is None:
             raise InputError(f"control={control!r} needs load= (the normal force in N)")
-        load = _finite_positive("load", load)
+        load = positive_finite("load", load, "N")
     if control == "moment" and load_position is None:
         raise InputError("control='moment' needs load_position= (x_m in m)")
     if control == "displacement":
@@ -203,7 +204,7 @@ def build_problem(
                 "for a width profile w(x)"
             )
         else:
-            w = _finite_positive("width", width)  # type: ignore[arg-type]
+            w = positive_finite("width", width, "m")  # type: ignore[arg-type]
         footprint = np.ones(x.shape, dtype=bool)
         extra = w if model == "strip" else float(reference_length)
         conv = _operator(model, (x.size,), dx, 0.0, modulus, extra, workers)
@@ -300,16 +301,6 @@ def _operator(
     if model == "strip":
         return strip_convolution(shape[0], dx, extra, modulus=modulus, workers=workers)
     return line_convolution(shape[0], dx, modulus=modulus, reference_length=extra, workers=workers)
-
-
-def _finite_positive(name: str, value: float) -> float:
-    try:
-        value = float(value)
-    except (TypeError, ValueError):
-        raise InputError(f"{name} must be a number, got {value!r}") from None
-    if not np.isfinite(value) or value <= 0.0:
-        raise InputError(f"{name} must be finite and positive, got {value!r}")
-    return value
 
 
 def _uniform_grid(name: str, x: ArrayLike) -> tuple[np.ndarray, float]:
