@@ -40,18 +40,16 @@ def main() -> None:
         grain_average,
         grind_preset,
         ice_hardness,
-        lowpass,
         pearson,
-        remove_form,
+        prepare,
         roughness,
         scherge2021,
     )
 
     def prepared(name: str, dx: float) -> object:
-        """The preset as both contact models see it (and as the CLI prepares a file): plane
-        removed, then the seed's 33 µm Fourier low-pass."""
-        raw = grind_preset(name, size=size, dx=dx, seed=0)
-        return lowpass(remove_form(raw, method="plane"), cutoff=33e-6)
+        """The preset as both contact models see it (skisnow.micro.prepare, as the CLI prepares
+        a file): plane removed, then the seed's 33 µm Fourier low-pass."""
+        return prepare(grind_preset(name, size=size, dx=dx, seed=0))
 
     size = 0.3e-3 if args.small else 1e-3
     ep_dx = 3e-6 if args.small else 2e-6

@@ -15,6 +15,7 @@ from skisnow.micro import (
     line_parameters,
     lowpass,
     make_topography,
+    prepare,
     roughness,
     scherge2021,
 )
@@ -83,6 +84,25 @@ def test_lowpass_separates_wavelengths() -> None:
     t = make_topography((long_ + short)[:, None] * np.ones((1, 8)), dx=dx)
     out = np.asarray(lowpass(t, cutoff=33e-6).heights)[:, 0]
     np.testing.assert_allclose(out, long_, atol=1e-15)  # exact: both are DCT-II modes
+
+
+def test_prepare_removes_the_plane_then_the_short_wavelengths() -> None:
+    # a tilted plane + a 128 µm and a 16 µm mode: the one preparation of skisnow (plane removal,
+    # 33 µm low-pass) returns the 128 µm mode (orthogonal to the plane over its 4 periods)
+    n, dx = 512, 1e-6
+    x = (np.arange(n) + 0.5) * dx
+    y = (np.arange(8) + 0.5) * dx
+    long_ = 1e-6 * np.cos(np.pi * 8 * x / (n * dx))
+    short = 0.3e-6 * np.cos(np.pi * 64 * x / (n * dx))
+    plane = 2e-6 + 0.01 * x[:, None] - 0.02 * y[None, :]
+    t = make_topography((long_ + short)[:, None] + plane, dx=dx)
+    out = np.asarray(prepare(t).heights)
+    np.testing.assert_allclose(out, long_[:, None] * np.ones((1, 8)), atol=1e-12)
+    # roughness() sees exactly this map: Sq of a cosine is its amplitude / √2
+    assert roughness(t).Sq == pytest.approx(1e-6 / np.sqrt(2), rel=1e-6)
+    assert np.asarray(prepare(t, cutoff=None).heights) == pytest.approx(
+        (long_ + short)[:, None] * np.ones((1, 8)), abs=1e-12
+    )
 
 
 def test_parabolic_groove_round_trip() -> None:

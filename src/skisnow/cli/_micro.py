@@ -35,11 +35,9 @@ def _load(source: str, pixel_um: float | None, height_unit: str, *, seed: int = 
     return micro.read_topography(path, pixel_size=pixel, height_unit=height_unit)
 
 
-def _prepare(topo: Any, cutoff_um: float, form: str) -> Any:
-    from skisnow import micro
-
-    t = micro.remove_form(topo, method=form)
-    return micro.lowpass(t, cutoff=cutoff_um * 1e-6) if cutoff_um > 0 else t
+def _cutoff(cutoff_um: float) -> float | None:
+    """--cutoff-um [µm] → the low-pass cut-off [m] (0: no filter)."""
+    return cutoff_um * 1e-6 if cutoff_um > 0 else None
 
 
 def _roughness_record(r: Any) -> dict[str, Any]:
@@ -77,7 +75,7 @@ def topo(
     from skisnow import micro
 
     t = _load(file, pixel_um, height_unit)
-    r = micro.roughness(t, cutoff=cutoff_um * 1e-6 if cutoff_um > 0 else None, form=form)
+    r = micro.roughness(t, cutoff=_cutoff(cutoff_um), form=form)
     doc = {
         "source": t.source,
         "grid": list(t.shape),
@@ -94,7 +92,10 @@ def topo(
         doc["figures"] = [
             str(p)
             for p in save_figure(
-                topography_figure(_prepare(t, cutoff_um, form), title=t.source), figure
+                topography_figure(
+                    micro.prepare(t, cutoff=_cutoff(cutoff_um), form=form), title=t.source
+                ),
+                figure,
             )
         ]
     if json_out:
@@ -186,7 +187,9 @@ def bearing(
         warnings.simplefilter("always", DomainWarning)
         regime = micro.deformation_regime(temperature_c, model=hardness_model)
     notes = [str(w.message) for w in caught]
-    t = _prepare(_load(source, pixel_um, height_unit, seed=seed), cutoff_um, form)
+    t = micro.prepare(
+        _load(source, pixel_um, height_unit, seed=seed), cutoff=_cutoff(cutoff_um), form=form
+    )
     pressure = pressure_kpa * 1e3
     if not regime.bearing_model_applies:
         notes.append("the base is softer than the ice here: the bearing model does not apply")

@@ -6,7 +6,8 @@ of Cross Country Skis", Front. Mech. Eng. 7:659995 (2021):
 * topographies: :func:`read_topography` (SurfaceTopography readers, ``.npy``, text),
   :func:`remove_form`, :func:`fill_missing`, :func:`write_topography`;
 * synthetic grinds: :func:`grind`, :func:`grind_preset` (S1–S5), :data:`PRESETS`;
-* roughness: :func:`roughness`, :func:`lowpass` (33 µm cut-off), :func:`areal_parameters`,
+* roughness: :func:`roughness`, :func:`prepare` (form removal + :func:`lowpass`, 33 µm
+  cut-off: the one preparation of a map for roughness and contact), :func:`areal_parameters`,
   :func:`line_parameters`;
 * materials (eq. 1–4): :func:`ice_hardness`, :func:`uhmwpe_hardness`,
   :func:`deformation_regime`, :func:`contact_time`;
@@ -60,6 +61,7 @@ from skisnow.micro._roughness import (
     areal_parameters,
     line_parameters,
     lowpass,
+    prepare,
     roughness,
 )
 from skisnow.micro._stats import (
@@ -122,6 +124,7 @@ __all__ = [
     "lowpass",
     "make_topography",
     "pearson",
+    "prepare",
     "rank",
     "rank_table",
     "read_rank_table",

@@ -34,6 +34,7 @@ __all__ = [
     "areal_parameters",
     "line_parameters",
     "lowpass",
+    "prepare",
     "roughness",
 ]
 
@@ -134,6 +135,22 @@ def line_parameters(topo: Topography, *, axis: int = 0, n_sampling: int = 5) -> 
     return {"Ra": float(ra.mean()), "Rz": float(rz.mean()), "Rt": float(rt.mean())}
 
 
+def prepare(
+    topo: Topography,
+    *,
+    cutoff: float | None = DEFAULT_CUTOFF,
+    form: str = "plane",
+    degree: int = 2,
+) -> Topography:
+    """A topography as the roughness parameters and both contact models see it (Scherge et al.
+    2021, §2.2): form removal (``'mean'``, ``'plane'``, ``'polynomial'`` of ``degree``,
+    :func:`~skisnow.micro.remove_form`), then the Fourier low-pass with ``cutoff`` [m]
+    (:func:`lowpass`; ``None``: no filter). The one preparation of skisnow: :func:`roughness`,
+    ``skisnow topo`` and ``skisnow bearing`` and the examples call it."""
+    t = remove_form(topo, method=form, degree=degree)
+    return t if cutoff is None else lowpass(t, cutoff=cutoff)
+
+
 def roughness(
     topo: Topography,
     *,
@@ -141,12 +158,10 @@ def roughness(
     form: str = "plane",
     degree: int = 2,
 ) -> Roughness:
-    """All roughness parameters as the seed quotes them: form removal (``'mean'``, ``'plane'``,
-    ``'polynomial'``), then the Fourier low-pass with ``cutoff`` [m] (``None``: no filter), then
+    """All roughness parameters as the seed quotes them: the map prepared by :func:`prepare`
+    (form removal, then the Fourier low-pass with ``cutoff`` [m], ``None``: no filter), then
     Sa, Sq, Sdq, Ssk, Sku and the line values Ra, Rz, Rt across the ski."""
-    t = remove_form(topo, method=form, degree=degree)
-    if cutoff is not None:
-        t = lowpass(t, cutoff=cutoff)
+    t = prepare(topo, cutoff=cutoff, form=form, degree=degree)
     a = areal_parameters(t)
     line = line_parameters(t, axis=0)
     return Roughness(**a, **line, cutoff=cutoff, form=form)
