@@ -30,7 +30,8 @@ from skisnow.constants import STANDARD_GRAVITY
 from skisnow.contact import contact_zones, effective_modulus, solve_contact
 from skisnow.ski import get_ski, solve_beam
 from skisnow.ski._metrics import wax_pocket, wax_pocket_length
-from skisnow.ski._skis import Ski, _build_glide
+from skisnow.ski._shipped import _build_glide
+from skisnow.ski._skis import Ski
 
 E_BASE = 900e6
 N_ELEMENTS = 300

@@ -41,7 +41,8 @@ def zone_record(zone: Any, *, pressures: bool = True) -> dict[str, Any]:
 @app.command()
 def contact(
     ski: Annotated[
-        str | None, typer.Option("--ski", help="Shipped ski name (classic, skate).")
+        str | None,
+        typer.Option("--ski", help="Shipped ski name (classic, skate) or a ski file (.json)."),
     ] = None,
     profile: Annotated[
         Path | None,
@@ -72,9 +73,10 @@ def contact(
         str,
         typer.Option(
             "--profile-source",
-            help="With --ski: network (shipped pretrained, default) or beam (virtual ski).",
+            help="With --ski: network (shipped pretrained), beam (virtual ski), or auto "
+            "(default: network for a shipped ski, beam for a ski file).",
         ),
-    ] = "network",
+    ] = "auto",
     base_modulus_mpa: Annotated[
         float, typer.Option("--base-modulus-mpa", help="Ski base modulus in MPa (eq. 2).")
     ] = BASE.modulus / 1e6,
@@ -113,6 +115,10 @@ def contact(
         )
     if profile is not None:
         width_mm = 44.0 if width_mm is None else width_mm
+    if ski is not None:
+        from skisnow.cli._ski import resolve_profile_source
+
+        profile_source = resolve_profile_source(profile_source, [ski])
     for name, value in (
         ("--mass-kg", mass_kg),
         ("--snow-modulus-mpa", snow_modulus_mpa),

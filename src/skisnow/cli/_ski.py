@@ -15,17 +15,27 @@ from skisnow.cli._render import emit_json, print_table, progress_bar
 _JSON = typer.Option(False, "--json", help="Print one JSON document to stdout, nothing else.")
 
 
-def ski_summary_rows() -> list[dict[str, Any]]:
-    """Key numbers of the shipped skis in field units (used by ``skis`` and ``demo``)."""
+def resolve_profile_source(option: str, skis: list[str]) -> str:
+    """``--profile-source auto``: the shipped network when every ski is a shipped one (it exists
+    only for them), the beam when a ski file is among them; other values pass through."""
+    from skisnow.ski import SHIPPED_SKIS
+
+    if option != "auto":
+        return option
+    return "network" if all(s in SHIPPED_SKIS for s in skis) else "beam"
+
+
+def ski_summary_rows(skis: list[str] | None = None) -> list[dict[str, Any]]:
+    """Key numbers of skis (default: the shipped ones) in field units (``skis`` and ``demo``)."""
     from skisnow.ski import SHIPPED_SKIS, closing_load, get_ski
 
     rows = []
-    for name in SHIPPED_SKIS:
+    for name in SHIPPED_SKIS if skis is None else skis:
         ski = get_ski(name)
         kz = ski.kick_zone
         rows.append(
             {
-                "ski": name,
+                "ski": ski.name,
                 "kind": ski.kind,
                 "length_mm": ski.length * 1e3,
                 "width_mm": ski.width * 1e3,
@@ -41,8 +51,97 @@ def ski_summary_rows() -> list[dict[str, Any]]:
 
 
 @app.command()
-def skis(json_out: bool = _JSON) -> None:
-    """List the shipped virtual skis and their key numbers."""
+def skis(
+    show: Annotated[
+        str | None,
+        typer.Option("--show", help="Show one ski's passport: a shipped name or a ski file."),
+    ] = None,
+    figure: Annotated[
+        Path | None,
+        typer.Option("--figure", help="With --show: save the passport figure (png/svg/pdf)."),
+    ] = None,
+    out: Annotated[
+        Path | None,
+        typer.Option("--out", help="With --show: write the ski as a ski file (.json)."),
+    ] = None,
+    step_mm: Annotated[
+        float, typer.Option("--step-mm", help="With --show: station spacing of the table [mm].")
+    ] = 100.0,
+    body_mass_kg: Annotated[
+        float, typer.Option("--body-mass-kg", help="With --show: body mass of the metrics [kg].")
+    ] = 65.0,
+    load_position_mm: Annotated[
+        float,
+        typer.Option("--load-position-mm", help="With --show: load position of the metrics [mm]."),
+    ] = -80.0,
+    json_out: bool = _JSON,
+) -> None:
+    """List the shipped skis, or show one ski's passport (EI(x), z0(x), bands, metrics)."""
+    if show is None:
+        if figure is not None or out is not None:
+            raise InputError("--figure and --out need --show SKI")
+        _list_skis(json_out)
+        return
+    from skisnow.ski import get_ski, ski_passport, ski_to_document, write_ski
+
+    ski = get_ski(show)
+    if not (step_mm > 0):
+        raise InputError(f"--step-mm must be > 0, got {step_mm:g}")
+    pp = ski_passport(
+        ski, step=step_mm * 1e-3, body_mass=body_mass_kg, load_position=load_position_mm * 1e-3
+    )
+    if out is not None:
+        out.parent.mkdir(parents=True, exist_ok=True)
+        write_ski(ski, out)
+    if figure is not None:
+        from skisnow.plot import plot_passport
+        from skisnow.plot._style import save_figure
+
+        fmt = figure.suffix.lower().lstrip(".")
+        if fmt not in ("png", "svg", "pdf"):
+            raise InputError(f"--figure {figure}: use a .png, .svg or .pdf file name")
+        save_figure(plot_passport(ski), figure.with_suffix(""), formats=(fmt,))
+    doc = ski_to_document(ski)
+    summary = {k: doc[k] for k in ("name", "kind", "x_tail_mm", "x_tip_mm", "width_mm",
+                                   "kick_zone_mm", "boot_plate_mm")}  # fmt: skip
+    summary["length_mm"] = ski.length * 1e3
+    summary["balance_point_from_tail_mm"] = -ski.x_tail * 1e3
+    table = {k: v.tolist() for k, v in pp.table().items()}
+    if json_out:
+        emit_json(
+            {
+                "ski": summary,
+                "stations": table,
+                "metrics": pp.metrics,
+                "provenance": doc["provenance"],
+                "file": None if out is None else str(out),
+                "figure": None if figure is None else str(figure),
+            }
+        )
+        return
+
+    def cell(value: Any) -> Any:
+        return f"{value[0]:g} .. {value[1]:g}" if isinstance(value, list) else value
+
+    print_table(f"Ski {ski.name}", ["", "value"], [[k, cell(v)] for k, v in summary.items()])
+    cols = list(table)
+    if not pp.has_bands:
+        cols = ["x_mm", "ei_nm2", "z0_mm"]
+    rows = [[table[c][i] for c in cols] for i in range(len(table["x_mm"]))]
+    print_table("EI(x) and z0(x)" + (" with 95 % bands" if pp.has_bands else ""), cols, rows)
+    if pp.metrics is not None:
+        keys = [k for k in pp.metrics if k not in ("ski",)]
+        print_table("Practitioners' metrics", ["metric", "value"],
+                    [[k, pp.metrics[k]] for k in keys], floatfmt=".4g")  # fmt: skip
+    prov = doc["provenance"]
+    prov_rows = [["method", prov["method"]], ["data", prov["data"]],
+                 ["created", prov["created_utc"]], ["software", prov["software"]]]  # fmt: skip
+    prov_rows += [[k, v] for k, v in prov["details"].items()]
+    prov_rows += [[f"source {i + 1}", s] for i, s in enumerate(prov["sources"])]
+    print_table("Provenance", ["", ""], prov_rows)
+
+
+def _list_skis(json_out: bool) -> None:
     rows = ski_summary_rows()
     if json_out:
         emit_json({"skis": rows})
@@ -60,7 +159,9 @@ def skis(json_out: bool = _JSON) -> None:
 
 @app.command()
 def bench(
-    ski: Annotated[str, typer.Argument(help="Shipped ski name (see `skisnow skis`).")],
+    ski: Annotated[
+        str, typer.Argument(help="Shipped ski name (see `skisnow skis`) or a ski file (.json).")
+    ],
     out: Annotated[Path, typer.Option("--out", help="Output file, .csv or .parquet.")],
     mass_kg: str = typer.Option("5:130:5", "--mass-kg", help="Masses: start:stop:step or a,b,c."),
     load_position_mm: str = typer.Option(
@@ -116,8 +217,10 @@ def metrics_documents(
     if not path.exists():
         raise InputError(
             f"{source!r} is neither a shipped ski ({', '.join(SHIPPED_SKIS)}) nor an existing "
-            "bench file (.csv or .parquet)"
+            "ski file (.json) or bench file (.csv or .parquet)"
         )
+    if path.suffix.lower() == ".json":
+        return [ski_metrics(str(path), **kw).as_field_units()]
     data = read_bench(path)
     return [ski_metrics(data, ski=name, **kw).as_field_units() for name in data.skis]
 
@@ -131,7 +234,9 @@ def print_metrics_table(docs: list[dict[str, Any]], title: str) -> None:
 
 @app.command()
 def metrics(
-    source: str = typer.Argument(..., help="A shipped ski name or a bench file (.csv/.parquet)."),
+    source: str = typer.Argument(
+        ..., help="A shipped ski name, a ski file (.json) or a bench file (.csv/.parquet)."
+    ),
     body_mass_kg: float = typer.Option(65.0, "--body-mass-kg", help="Skier's body mass [kg]."),
     load_position_mm: float = typer.Option(
         -80.0, "--load-position-mm", help="Load position from the balance point [mm]."

@@ -10,11 +10,14 @@ import typer
 from skisnow._errors import SkisnowError
 from skisnow.cli._app import app
 from skisnow.cli._render import emit_json, print_table, progress_bar
+from skisnow.cli._ski import resolve_profile_source
 
 
 @app.command()
 def sweep(
-    ski: Annotated[list[str], typer.Option("--ski", help="Ski name (repeat for several).")],
+    ski: Annotated[
+        list[str], typer.Option("--ski", help="Ski name or ski file .json (repeat for several).")
+    ],
     out: Annotated[Path, typer.Option("--out", help="Zarr store (resumed if it exists).")],
     mass_kg: Annotated[
         str, typer.Option("--mass-kg", help="Masses (kg): start:stop:step, a value or a list.")
@@ -43,8 +46,13 @@ def sweep(
         "strip"
     ),
     profile_source: Annotated[
-        str, typer.Option("--profile-source", help="Loaded profile: network or beam.")
-    ] = "network",
+        str,
+        typer.Option(
+            "--profile-source",
+            help="Loaded profile: network, beam, or auto (network for shipped skis, beam for "
+            "ski files).",
+        ),
+    ] = "auto",
     n_points: Annotated[int, typer.Option("--n-points", help="Grid points along the ski.")] = 4096,
     netcdf: Annotated[
         Path | None, typer.Option("--netcdf", help="Also export the finished sweep to NetCDF.")
@@ -64,7 +72,7 @@ def sweep(
         load_positions=parse_values(load_position_mm, name="--load-position-mm") * MM,
         snow_moduli=parse_values(snow_modulus_mpa, name="--snow-modulus-mpa") * MPA,
         model=model,
-        profile_source=profile_source,
+        profile_source=resolve_profile_source(profile_source, ski),
         n_points=n_points,
     )
     n_chunks = len(spec.chunks())
@@ -143,7 +151,7 @@ def plot(
 
 @app.command()
 def report(
-    ski: Annotated[str, typer.Argument(help="Ski name.")],
+    ski: Annotated[str, typer.Argument(help="Shipped ski name or ski file (.json).")],
     out: Annotated[Path, typer.Option("--out", help="Directory for the report.")] = Path(
         "skisnow-report"
     ),
@@ -157,8 +165,13 @@ def report(
         int | None, typer.Option("--workers", help="Dask workers for the maps (0: in process).")
     ] = 0,
     profile_source: Annotated[
-        str, typer.Option("--profile-source", help="Loaded profile: network or beam.")
-    ] = "network",
+        str,
+        typer.Option(
+            "--profile-source",
+            help="Loaded profile: network, beam, or auto (network for shipped skis, beam for "
+            "ski files).",
+        ),
+    ] = "auto",
     scheduler: Annotated[
         str | None,
         typer.Option("--scheduler", envvar="SKISNOW_SCHEDULER", help="Existing Dask scheduler."),
@@ -177,14 +190,16 @@ def report(
     from skisnow.report import write_report
     from skisnow.sweep import parse_values
 
+    source = resolve_profile_source(profile_source, [ski])
+    stem = Path(ski).stem if ski.lower().endswith(".json") else ski  # a ski file: its stem
     study = study_ski(
         ski,
-        store=out / f"{ski}_maps_{profile_source}.zarr",
+        store=out / f"{stem}_maps_{source}.zarr",
         body_mass=body_mass_kg,
         load_position=load_position_mm * 1e-3,
         workers=workers,
         scheduler=scheduler,
-        profile_source=profile_source,
+        profile_source=source,
         masses=tuple(parse_values(mass_kg, name="--mass-kg")),
         map_moduli=tuple(parse_values(snow_modulus_mpa, name="--snow-modulus-mpa") * 1e6),
         n_points=n_points,

@@ -18,6 +18,7 @@ from skisnow.plot._contact import plot_contact
 from skisnow.plot._maps import MAP_KINDS, plot_load_share, plot_zone_map, sweep_figures
 from skisnow.plot._micro import bearing_figure, topography_figure
 from skisnow.plot._profiles import plot_camber_profiles
+from skisnow.plot._ski import plot_passport
 from skisnow.plot._style import FORMATS, figure_svg, save_figure
 from skisnow.plot._workflows import animate_cycle, plot_cycle, plot_fleet, plot_snow_ranking
 
@@ -32,6 +33,7 @@ __all__ = [
     "plot_cycle",
     "plot_fleet",
     "plot_load_share",
+    "plot_passport",
     "plot_snow_ranking",
     "plot_zone_map",
     "save_figure",

@@ -20,7 +20,10 @@ Equation map (Kalliorinne et al. 2023 unless named):
   Euler–Bernoulli beam with stiffness EI(x) and free camber z0(x), free-floating on the rigid
   stone — force and moment balance as in eq. 3 with the unilateral contact solved as an LCP
   (Nocedal & Wright 2006, Alg. 16.3; Júdice & Pires 1994): :func:`solve_beam`; the shipped
-  virtual skis :data:`SHIPPED_SKIS`, :class:`Ski`, :func:`get_ski`; beam references for the
+  skis :data:`SHIPPED_SKIS`, :class:`Ski`, :func:`get_ski` (a shipped name or a ski file),
+  :class:`Provenance`; ski files (JSON ``skisnow-ski`` v1, validated, exact round trip):
+  :func:`read_ski`, :func:`write_ski`, :func:`ski_to_json`; the passport (EI(x), z0(x), bands,
+  metrics): :func:`ski_passport` → :class:`SkiPassport`; beam references for the
   tests: :func:`cantilever_tip_deflection`, :func:`three_point_bending_deflection`,
   :func:`beam_stiffness_matrix`, :func:`hermite_interpolate`.
 * Practitioners' metrics (Breitschädel 2012): camber height :func:`camber_height`, wax pocket
@@ -64,8 +67,19 @@ from skisnow.ski._metrics import (
     wax_pocket,
     wax_pocket_length,
 )
+from skisnow.ski._passport import SkiPassport, ski_passport
 from skisnow.ski._profiles import camber_profile
-from skisnow.ski._skis import SHIPPED_SKIS, Ski, get_ski
+from skisnow.ski._skifile import (
+    SKI_FILE_FORMAT,
+    SKI_FILE_VERSION,
+    read_ski,
+    ski_from_document,
+    ski_from_json,
+    ski_to_document,
+    ski_to_json,
+    write_ski,
+)
+from skisnow.ski._skis import SHIPPED_SKIS, Provenance, Ski, get_ski, shipped_ski_path
 
 # The bench and the metrics of one ski read and write tables (pandas), the network needs JAX:
 # imported on first use, so that the contact sweep's workers and the CLI start without them
@@ -98,15 +112,19 @@ __all__ = [
     "DEFAULT_LOAD_POSITIONS",
     "DEFAULT_MASSES",
     "SHIPPED_SKIS",
+    "SKI_FILE_FORMAT",
+    "SKI_FILE_VERSION",
     "Architecture",
     "BeamSolution",
     "BlockNetwork",
     "CamberNetwork",
     "Domain",
+    "Provenance",
     "ReferenceProfile",
     "Scaling",
     "Ski",
     "SkiMetrics",
+    "SkiPassport",
     "TrainingProgress",
     "beam_stiffness_matrix",
     "bench_grid",
@@ -123,15 +141,23 @@ __all__ = [
     "hermite_interpolate",
     "load_network",
     "loaded_profile",
+    "read_ski",
     "run_bench",
     "save_network",
     "shipped_network",
+    "shipped_ski_path",
+    "ski_from_document",
+    "ski_from_json",
     "ski_metrics",
+    "ski_passport",
     "ski_stiffness",
+    "ski_to_document",
+    "ski_to_json",
     "solve_beam",
     "support_line",
     "three_point_bending_deflection",
     "train_network",
     "wax_pocket",
     "wax_pocket_length",
+    "write_ski",
 ]

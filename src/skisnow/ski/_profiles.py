@@ -8,7 +8,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from skisnow._errors import InputError
-from skisnow.ski._skis import Ski, get_ski
+from skisnow.ski._skis import SHIPPED_SKIS, Ski, get_ski
 
 __all__ = ["camber_profile"]
 
@@ -27,7 +27,7 @@ def camber_profile(
     ----------
     ski_name
         a shipped ski name (``'classic'``, ``'skate'``) or, for ``source='beam'``,
-        a :class:`~skisnow.ski.Ski`.
+        a :class:`~skisnow.ski.Ski` or the path of a ski file.
     mass
         load m [kg]; a 1-D array of k masses gives k profiles at once (the network
         predicts them in one call, ~50x faster than one call per mass).
@@ -75,8 +75,12 @@ def camber_profile(
             return xs, heights
         sol = solve_beam(ski, mass=float(masses), load_position=load_position)
         return xs, sol.sample(xs)
-    if isinstance(ski_name, Ski):
-        raise InputError("source='network' needs the name of a shipped ski, not a Ski object")
+    if isinstance(ski_name, Ski) or ski_name not in SHIPPED_SKIS:
+        what = ski.name if isinstance(ski_name, Ski) else ski_name
+        raise InputError(
+            f"ski {what!r}: the camber network exists only for the shipped skis "
+            f"({', '.join(SHIPPED_SKIS)}); use the beam (source 'beam', --profile-source beam)"
+        )
     from skisnow.io import shipped_network
 
     height = shipped_network(ski_name).predict(xs, masses, load_position)

@@ -240,9 +240,7 @@ def ski_metrics(
             closing=closing_load_from_bench(source, load_position=load_position, ski=name),
             kick_zone=kick,
         )
-    if isinstance(source, str) and source not in SHIPPED_SKIS:
-        raise InputError(f"unknown ski {source!r}; shipped skis are: {', '.join(SHIPPED_SKIS)}")
-    sk = _resolve_ski(source)
+    sk = _resolve_ski(source)  # a shipped name or a ski file
     if not isinstance(sk, Ski):
         raise InputError(f"source must be a Ski, a ski name or BenchData, not {type(source)}")
     from skisnow.ski._bench import bench_grid

@@ -12,6 +12,7 @@ from __future__ import annotations
 import json
 import math
 from dataclasses import asdict, dataclass, field
+from functools import lru_cache
 from typing import Any
 
 from skisnow._errors import InputError
@@ -40,7 +41,12 @@ class SweepSpec:
     """What a sweep computes, in SI units.
 
     Attributes:
-        skis: shipped ski names (``skisnow.ski.SHIPPED_SKIS``).
+        skis: ski labels: shipped ski names (``skisnow.ski.SHIPPED_SKIS``) or paths of ski
+            files (the label stays the path as given).
+        ski_files: ``(label, ski-file JSON text)`` of every ski that is not a shipped one,
+            filled in from the files when the spec is made: the workers get the definition,
+            not a path they may not see, and a resumed sweep whose ski file changed is refused
+            (the spec differs).
         masses: loads as masses [kg]; sorted ascending (the warm-start path).
         load_positions: load positions x_m [m] from the balance point, positive toward the tip.
         snow_moduli: elastic moduli of the snow E_counter [Pa].
@@ -67,12 +73,28 @@ class SweepSpec:
     tol: float = 1e-8
     warm_start: bool = True
     zones: tuple[str, ...] = field(default=ZONES)
+    ski_files: tuple[tuple[str, str], ...] = ()
 
     def __post_init__(self) -> None:
+        from skisnow.ski import SHIPPED_SKIS, get_ski, ski_to_json
+
         skis = (self.skis,) if isinstance(self.skis, str) else tuple(self.skis)
         if not skis or len(set(skis)) != len(skis) or not all(isinstance(s, str) for s in skis):
             raise InputError(f"skis: need distinct ski names, got {skis!r}")
         object.__setattr__(self, "skis", skis)
+        files = {str(k): str(v) for k, v in self.ski_files}
+        for label in skis:
+            if label not in SHIPPED_SKIS and label not in files:
+                files[label] = ski_to_json(get_ski(label))  # reads and validates the file
+        unused = sorted(set(files) - set(skis))
+        if unused:
+            raise InputError(f"ski_files: {unused[0]!r} is not one of the skis {skis!r}")
+        object.__setattr__(self, "ski_files", tuple((k, files[k]) for k in skis if k in files))
+        if self.profile_source == "network" and self.ski_files:
+            raise InputError(
+                f"ski {self.ski_files[0][0]!r} is a ski file: the camber network exists only for "
+                f"the shipped skis ({', '.join(SHIPPED_SKIS)}); use profile_source 'beam'"
+            )
         object.__setattr__(
             self, "masses", _as_sorted_unique(self.masses, "masses", "kg", positive=True)
         )
@@ -104,6 +126,16 @@ class SweepSpec:
         object.__setattr__(self, "zones", tuple(self.zones))
 
     # ----------------------------------------------------------------------------------------
+    def ski(self, label: str) -> Any:  # a skisnow.ski.Ski (imported lazily)
+        """The :class:`~skisnow.ski.Ski` of ``label``: its definition carried by the spec, or
+        the shipped ski of that name."""
+        from skisnow.ski import get_ski
+
+        for key, text in self.ski_files:
+            if key == label:
+                return _ski_from_text(text, key)
+        return get_ski(label)
+
     @property
     def shape(self) -> tuple[int, int, int, int, int]:
         """Dataset shape (ski, mass, load position, snow modulus, zone)."""
@@ -140,4 +172,12 @@ class SweepSpec:
         d = json.loads(text)
         for key in ("skis", "masses", "load_positions", "snow_moduli", "zones"):
             d[key] = tuple(d[key])
+        d["ski_files"] = tuple(tuple(pair) for pair in d.get("ski_files", ()))
         return cls(**d)
+
+
+@lru_cache(maxsize=32)
+def _ski_from_text(text: str, label: str) -> Any:
+    from skisnow.ski import ski_from_json
+
+    return ski_from_json(text, where=f"(sweep ski {label!r})")

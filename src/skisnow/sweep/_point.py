@@ -35,7 +35,7 @@ def loaded_profiles(spec: SweepSpec, ski_name: str, load_position: float) -> dic
     from skisnow import pipeline
 
     x, heights = pipeline.loaded_profiles(
-        ski_name,
+        spec.ski(ski_name),  # the definition the spec carries (a ski file's, or a shipped ski)
         spec.masses,
         float(load_position),
         profile_source=spec.profile_source,
@@ -64,7 +64,7 @@ def solve_point(
     from skisnow.pipeline import solve_case
 
     return solve_case(
-        ski_name,
+        spec.ski(ski_name),
         mass=float(mass),
         load_position=float(load_position),
         snow_modulus=float(snow_modulus),
