@@ -115,7 +115,7 @@ def test_table_output(capsys) -> None:
     ],
 )
 def test_errors_are_one_line(capsys, extra: list[str], message: str) -> None:
-    assert main([*BASE, *extra]) == 1
+    assert main([*BASE, *extra]) == 2
     err = capsys.readouterr().err
     assert message in err and "Traceback" not in err and err.count("\n") == 1
 
@@ -123,11 +123,11 @@ def test_errors_are_one_line(capsys, extra: list[str], message: str) -> None:
 def test_bad_profile_files(capsys, tmp_path: Path) -> None:
     bad = tmp_path / "bad.csv"
     bad.write_text("x_mm,height\n1,2\n")
-    assert main([*BASE, "--profile", str(bad)]) == 1
+    assert main([*BASE, "--profile", str(bad)]) == 2
     assert "missing column(s) height_mm" in capsys.readouterr().err
     rows = "\n".join(f"{i},{0.1 if i != 5 else 'abc'}" for i in range(10))
     bad.write_text("x_mm,height_mm\n" + rows + "\n")
-    assert main([*BASE, "--profile", str(bad)]) == 1
+    assert main([*BASE, "--profile", str(bad)]) == 2
     assert "row 7, column height_mm" in capsys.readouterr().err
 
 

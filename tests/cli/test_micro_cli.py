@@ -100,7 +100,7 @@ def test_human_output_and_rank(capsys, tmp_path: Path) -> None:
     ],
 )
 def test_errors_are_one_line(capsys, args: list[str], message: str) -> None:
-    assert main(args) == 1
+    assert main(args) == 2
     err = capsys.readouterr().err
     assert message in err and "Traceback" not in err and len(err.strip().splitlines()) == 1
 
@@ -108,7 +108,7 @@ def test_errors_are_one_line(capsys, args: list[str], message: str) -> None:
 def test_corrupt_file_error(capsys, tmp_path: Path) -> None:
     bad = tmp_path / "bad.sur"
     bad.write_bytes(b"DIGITAL SURF" + b"\x00" * 50)
-    assert main(["topo", str(bad)]) == 1
+    assert main(["topo", str(bad)]) == 2
     err = capsys.readouterr().err
     assert "bad.sur" in err and "FileFormatError" in err and "Traceback" not in err
 

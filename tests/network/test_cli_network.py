@@ -28,12 +28,12 @@ def test_predict_shipped_json(capsys):
 def test_predict_outside_domain_warns_or_refuses(capsys):
     code = main(["predict", "skate", "--mass-kg", "200", "--load-position-mm", "-120", "--json"])
     out = capsys.readouterr()
-    assert code == 0
+    assert code == 4  # outside the trained domain: exit code 4, result printed
     assert not json.loads(out.out)["in_trained_domain"]
     assert "outside" in out.err
     code = main(["predict", "skate", "--mass-kg", "200", "--load-position-mm", "-120", "--strict"])
     out = capsys.readouterr()
-    assert code == 1 and "mass 200 kg outside the trained 5..130 kg" in out.err
+    assert code == 2 and "mass 200 kg outside the trained 5..130 kg" in out.err
     assert "Traceback" not in out.err
 
 
@@ -91,17 +91,17 @@ def test_bad_bench_file_and_corrupt_model(tmp_path, capsys):
     bad.write_text("ski,mass_kg,x_mm\nclassic,5,0\n")
     code = main(["train", str(bad), "--out", str(tmp_path / "m")])
     err = capsys.readouterr().err
-    assert code == 1 and "Traceback" not in err and "bad.csv" in err
+    assert code == 2 and "Traceback" not in err and "bad.csv" in err
     (tmp_path / "m.npz").write_bytes(b"PK\x03\x04 not really a zip")
     (tmp_path / "m.json").write_text('{"format": "skisnow-camber-network"}')
     code = main(["predict", str(tmp_path / "m"), "--mass-kg", "50", "--load-position-mm", "-100"])
     err = capsys.readouterr().err
-    assert code == 1 and "corrupt or truncated" in err and "Traceback" not in err
+    assert code == 2 and "corrupt or truncated" in err and "Traceback" not in err
     code = main(["predict", "nonexistent", "--mass-kg", "50", "--load-position-mm", "-100"])
     err = capsys.readouterr().err
-    assert code == 1 and "neither a shipped ski" in err
+    assert code == 2 and "neither a shipped ski" in err
     code = main(["train", str(bad), "--out", str(tmp_path / "m"), "--widths", "1,2,3"])
-    assert code == 1
+    assert code == 2
 
 
 @pytest.mark.slow

@@ -1,28 +1,101 @@
-"""The Typer application shared by all command modules, and its error handling.
+"""The Typer application shared by all command modules, its error handling and exit codes.
 
 The CLI only parses, calls the library and renders. Each command module (``_ski.py``,
-``_contact.py``, ...) adds its commands to :data:`app`; :func:`main` runs it and turns
-:class:`~skisnow.SkisnowError` (and any other exception) into a one-line message and a non-zero
-exit, unless ``--debug`` is given.
+``_contact.py``, ...) adds its commands to :data:`app`; :func:`main` runs it, turns
+:class:`~skisnow.SkisnowError` (and any other exception) into a one-line message, and returns an
+exit code that says what happened (:data:`EXIT_CODES`), unless ``--debug`` is given.
+
+Exit codes:
+
+====  ======================================================================================
+0     done, and every solve converged inside the domain its models were fitted on
+1     internal error: an exception that is not one of skisnow's (a bug; please report it)
+2     bad input: a file or an option is wrong, impossible or implausible (nothing computed)
+3     a solver did not converge (the result is printed, flagged ``converged: false``)
+4     a result lies outside the trained or valid domain of a model (DomainWarning; printed)
+5     the computation failed for another reason (e.g. a sweep chunk failed; kept work says so)
+130   interrupted (Ctrl-C); finished work is kept where the message says
+====  ======================================================================================
 """
 
 from __future__ import annotations
 
 import sys
+import warnings
+from typing import Any
 
 import typer
 
 from skisnow import __version__
 
+EXIT_OK = 0
+EXIT_INTERNAL = 1
+EXIT_INPUT = 2
+EXIT_NOT_CONVERGED = 3
+EXIT_OUT_OF_DOMAIN = 4
+EXIT_FAILED = 5
+EXIT_INTERRUPTED = 130
+
+#: Exit code -> meaning (the table of ``skisnow --help`` and the README).
+EXIT_CODES: dict[int, str] = {
+    EXIT_OK: "done; every solve converged inside its models' domain",
+    EXIT_INTERNAL: "internal error (a bug: please report it with --debug output)",
+    EXIT_INPUT: "bad input: a file or option is wrong, impossible or implausible",
+    EXIT_NOT_CONVERGED: "a solver did not converge (result printed, converged: false)",
+    EXIT_OUT_OF_DOMAIN: "result outside a model's trained/valid domain (warning printed)",
+    EXIT_FAILED: "the computation failed (e.g. a sweep chunk); kept work is named",
+    EXIT_INTERRUPTED: "interrupted (Ctrl-C); finished work is kept",
+}
+
+_EPILOG = "Exit codes: " + "; ".join(f"{k} {v}" for k, v in EXIT_CODES.items()) + "."
+
 app = typer.Typer(
     name="skisnow",
     help="How a cross-country ski meets the snow: camber, apparent contact, real contact.",
+    epilog=_EPILOG,
     no_args_is_help=True,
     add_completion=False,
     pretty_exceptions_enable=False,
 )
 
-_state = {"debug": False}
+#: Per-run state: --debug, the convergence reported by commands, the warnings (domain,
+#: extrapolation) raised or reported during the run.
+_state: dict[str, Any] = {"debug": False, "converged": None, "warnings": [], "shown": set()}
+
+
+def report_converged(converged: bool) -> None:
+    """Called by a command after a solve: an unconverged one makes the run exit with 3."""
+    prev = _state.get("converged")
+    _state["converged"] = bool(converged) if prev is None else (prev and bool(converged))
+
+
+def report_domain_warnings(messages: list[str] | tuple[str, ...], *, shown: bool = False) -> None:
+    """Called by a command that caught DomainWarnings itself: the run exits with 4 and
+    ``--json`` lists them; ``shown``: the command printed them already (not printed again)."""
+    for m in messages:
+        if m not in _state["warnings"]:
+            _state["warnings"].append(m)
+        if shown:
+            _state["shown"].add(m)
+
+
+def run_annotations() -> dict[str, Any]:
+    """What every ``--json`` document carries: skisnow version, convergence, warnings."""
+    caught = _state.get("caught") or []
+    _collect(caught)
+    return {
+        "skisnow_version": __version__,
+        "converged": _state.get("converged"),
+        "warnings": list(_state["warnings"]),
+    }
+
+
+def _collect(caught: list[warnings.WarningMessage]) -> None:
+    from skisnow._errors import DomainWarning
+
+    for w in caught:
+        if issubclass(w.category, DomainWarning):
+            report_domain_warnings([str(w.message)])
 
 
 def _version_callback(value: bool) -> None:
@@ -52,13 +125,52 @@ def _root(
         _ALLOW.set(True)
 
 
+def _exit_code_of(exc: BaseException) -> int:
+    from skisnow._errors import ConvergenceError, InputError, SkisnowError
+
+    if isinstance(exc, InputError):
+        return EXIT_INPUT
+    if isinstance(exc, ConvergenceError):
+        return EXIT_NOT_CONVERGED
+    if isinstance(exc, SkisnowError):
+        return EXIT_FAILED
+    return EXIT_INTERNAL
+
+
 def main(argv: list[str] | None = None) -> int:
-    """Run the CLI; return the exit code (errors: one line on stderr, exit 1)."""
+    """Run the CLI; return the exit code (see :data:`EXIT_CODES`; errors: one line on stderr)."""
     args = sys.argv[1:] if argv is None else argv
-    _state["debug"] = "--debug" in args
+    _state.update(debug="--debug" in args, converged=None, warnings=[], shown=set())
     from skisnow._checks import _ALLOW
+    from skisnow._errors import DomainWarning
 
     token = _ALLOW.set(None)  # each run starts strict (or as SKISNOW_ALLOW_IMPLAUSIBLE says)
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", DomainWarning)
+        _state["caught"] = caught
+        try:
+            code = _run(args)
+        finally:
+            _ALLOW.reset(token)
+            _state["caught"] = None
+    _collect(caught)
+    for w in caught:  # other warnings are the user's to see, as they would be without us
+        if not issubclass(w.category, DomainWarning):
+            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno, source=w.source)
+    if code != EXIT_OK:
+        return code
+    for m in _state["warnings"]:
+        if m not in _state["shown"]:
+            typer.echo(f"skisnow: warning: {m}", err=True)
+    if _state["converged"] is False:
+        typer.echo("skisnow: warning: the solver did not converge (exit code 3)", err=True)
+        return EXIT_NOT_CONVERGED
+    if _state["warnings"]:
+        return EXIT_OUT_OF_DOMAIN
+    return EXIT_OK
+
+
+def _run(args: list[str]) -> int:
     try:
         # In non-standalone mode Click returns the code of a `typer.Exit(code)` / Ctrl-C (130)
         # instead of raising it: pass it on, or an interrupted command would report success.
@@ -67,21 +179,21 @@ def main(argv: list[str] | None = None) -> int:
         return exc.exit_code
     except typer.Abort:
         typer.echo("skisnow: aborted", err=True)
-        return 130
+        return EXIT_INTERRUPTED
     except KeyboardInterrupt:
         typer.echo("skisnow: interrupted", err=True)
-        return 130
+        return EXIT_INTERRUPTED
     except Exception as exc:  # the one place where every error is turned into a message
-        import click
-
         if _state["debug"]:
             raise
-        if isinstance(exc, click.ClickException):
-            exc.show()
-            return exc.exit_code
+        # Click's exceptions, whether from click itself or the copy Typer vendors: by name
+        classes = {c.__name__ for c in type(exc).__mro__}
+        if "ClickException" in classes:
+            exc.show()  # type: ignore[attr-defined]
+            return EXIT_INPUT if "UsageError" in classes else int(exc.exit_code)  # type: ignore[attr-defined]
         name = type(exc).__name__
-        typer.echo(f"skisnow: error: {exc} [{name}]", err=True)
-        return 1
-    finally:
-        _ALLOW.reset(token)
-    return code if isinstance(code, int) else 0
+        code = _exit_code_of(exc)
+        what = "internal error" if code == EXIT_INTERNAL else "error"
+        typer.echo(f"skisnow: {what}: {exc} [{name}]", err=True)
+        return code
+    return code if isinstance(code, int) else EXIT_OK

@@ -9,7 +9,7 @@ import numpy as np
 import typer
 
 from skisnow._errors import InputError
-from skisnow.cli._app import app
+from skisnow.cli._app import app, report_converged, report_domain_warnings
 from skisnow.cli._render import console, emit_json, err_console, print_table
 from skisnow.materials import BASE
 from skisnow.pipeline import DEFAULT_N_POINTS, MODELS, PROFILE_SOURCES
@@ -152,6 +152,10 @@ def contact(
     sol, zones = case.solution, case.zones
     for note in case.warnings:
         err_console.print(f"[yellow]warning:[/] {note}")
+    # exit code 3 when unconverged, 4 outside a model's domain (the last note of an unconverged
+    # case is the solver's own, the others are domain warnings)
+    report_converged(case.converged)
+    report_domain_warnings(case.warnings[: len(case.warnings) - (not case.converged)], shown=True)
     if fields_out is not None:
         write_fields(sol, fields_out)
     if figure is not None:

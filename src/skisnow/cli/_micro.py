@@ -11,7 +11,7 @@ import typer
 
 from skisnow._errors import InputError
 from skisnow._values import parse_values, sorted_unique
-from skisnow.cli._app import app
+from skisnow.cli._app import app, report_domain_warnings
 from skisnow.cli._render import console, emit_json, print_table, progress_bar
 
 __all__ = ["parse_grain_range"]
@@ -193,6 +193,7 @@ def bearing(
     pressure = pressure_kpa * 1e3
     if not regime.bearing_model_applies:
         notes.append("the base is softer than the ice here: the bearing model does not apply")
+    report_domain_warnings(notes, shown=not json_out)  # exit code 4, listed in --json
     with progress_bar("bearing model", total=diameters.size, disable=json_out) as bar:
         sweep = micro.bearing_sweep(
             t,

@@ -9,7 +9,7 @@ import numpy as np
 import typer
 
 from skisnow._errors import InputError
-from skisnow.cli._app import app
+from skisnow.cli._app import app, report_domain_warnings
 from skisnow.cli._render import emit_json, err_console, print_table, progress_bar
 
 _JSON = typer.Option(False, "--json", help="Print one JSON document to stdout, nothing else.")
@@ -132,6 +132,7 @@ def predict(
     notes = [str(w.message) for w in caught if issubclass(w.category, DomainWarning)]
     for n in notes:
         err_console.print(f"[yellow]warning:[/] {n}")
+    report_domain_warnings(notes, shown=True)  # exit code 4, listed in --json
     from skisnow.ski import SHIPPED_SKIS, breitschaedel_contact, get_ski
 
     kick = get_ski(net.ski).kick_zone if net.ski in SHIPPED_SKIS else None

@@ -31,7 +31,21 @@ def _jsonable(value: Any) -> Any:
 
 
 def emit_json(document: Mapping[str, Any] | Sequence[Any]) -> None:
-    """Print exactly one JSON document to stdout and nothing else (NaN/inf become null)."""
+    """Print exactly one JSON document to stdout and nothing else (NaN/inf become null).
+
+    A document (mapping) always carries ``skisnow_version``, ``converged`` (``true``/``false``
+    after a solve, ``null`` when the command solves nothing iteratively) and ``warnings`` (the
+    domain and extrapolation warnings of the run), whatever the command put in it.
+    """
+    if isinstance(document, Mapping):
+        from skisnow.cli._app import run_annotations
+
+        extra = run_annotations()
+        own = document.get("warnings") or []
+        merged = [*own, *(w for w in extra["warnings"] if w not in own)]
+        converged = document.get("converged", extra["converged"])
+        document = {**document, "skisnow_version": extra["skisnow_version"],
+                    "converged": converged, "warnings": merged}  # fmt: skip
     print(json.dumps(_jsonable(document), indent=2, allow_nan=False))
 
 

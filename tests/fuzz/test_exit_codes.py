@@ -1,0 +1,69 @@
+"""Exit codes that mean something: 0 done and converged, 2 bad input, 3 not converged, 4 outside
+a model's trained domain; ``--json`` always carries ``converged``, ``warnings`` and the version."""
+
+from __future__ import annotations
+
+import json
+
+import pytest
+
+from skisnow import __version__
+from skisnow.cli import main
+from skisnow.cli._app import EXIT_CODES
+
+CONTACT = ["contact", "--ski", "skate", "--mass-kg", "60", "--load-position-mm", "-120",
+           "--snow-modulus-mpa", "100", "--points", "256", "--json"]  # fmt: skip
+
+
+def test_help_lists_every_exit_code(capsys) -> None:
+    assert main(["--help"]) == 0
+    out = " ".join(capsys.readouterr().out.split())
+    for code in EXIT_CODES:
+        assert f"{code} " in out
+    assert "Exit codes" in out
+
+
+def test_converged_and_in_domain_is_0_with_annotations(capsys) -> None:
+    assert main(CONTACT) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert doc["converged"] is True and doc["warnings"] == []
+    assert doc["skisnow_version"] == __version__
+
+
+def test_bad_input_is_2(capsys) -> None:
+    assert main([*CONTACT, "--mass-kg", "-60"]) == 2
+    err = capsys.readouterr().err
+    assert "--mass-kg" in err and len(err.strip().splitlines()) == 1
+    assert main(["contact", "--no-such-option"]) == 2  # a usage error is bad input too
+
+
+def test_unconverged_contact_is_3_and_says_so(capsys, monkeypatch) -> None:
+    import skisnow.contact
+
+    original = skisnow.contact.solve_contact
+
+    def starved(*args, **kwargs):  # the same solve with 2 iterations: it cannot converge
+        return original(*args, **{**kwargs, "max_iter": 2})
+
+    monkeypatch.setattr(skisnow.contact, "solve_contact", starved)
+    assert main(CONTACT) == 3
+    captured = capsys.readouterr()
+    doc = json.loads(captured.out)
+    assert doc["converged"] is False
+    assert "did not converge" in captured.err
+
+
+def test_outside_the_trained_domain_is_4_and_listed(capsys) -> None:
+    # 200 kg on the skate's network, trained on 5..130 kg: computed, flagged, exit 4
+    code = main([*CONTACT[:-1], "--mass-kg", "200", "--profile-source", "network", "--json"])
+    doc = json.loads(capsys.readouterr().out)
+    assert code == 4
+    assert any("outside the trained" in w for w in doc["warnings"])
+    assert doc["skisnow_version"] == __version__ and "converged" in doc
+
+
+@pytest.mark.parametrize("args", [["skis", "--json"], ["rank", "--seed-tables", "--json"]])
+def test_every_json_document_is_annotated(capsys, args) -> None:
+    assert main(args) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert {"skisnow_version", "converged", "warnings"} <= set(doc)
