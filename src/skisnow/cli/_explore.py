@@ -9,7 +9,7 @@ from typing import Annotated
 import typer
 
 from skisnow.cli._app import app
-from skisnow.cli._render import emit_json, err_console
+from skisnow.cli._render import emit_json, err_console, progress_bar
 
 
 @app.command()
@@ -40,8 +40,6 @@ def explore(
     The page opens from disk in any browser, with no server and no network; it holds the contact
     of every grid point (zones, pressures, the ski base and the deformed snow).
     """
-    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn
-
     from skisnow import __version__
     from skisnow._atomic import atomic_write
     from skisnow.explore import ExplorerGrid, explorer_dataset, render_explorer
@@ -54,15 +52,12 @@ def explore(
         n_display=stations,
     )
     start = time.perf_counter()
-    with Progress(
-        TextColumn("explorer"), BarColumn(), MofNCompleteColumn(), console=err_console
-    ) as bar:
-        task = bar.add_task("solve", total=None)
+    with progress_bar("explorer", transient=False) as bar:
         ds = explorer_dataset(
             ski,
             grid,
             profile_source=profile_source,
-            progress=lambda done, total: bar.update(task, completed=done, total=total),
+            progress=bar,
         )
     ds.attrs["skisnow_version"] = __version__
     page = render_explorer(

@@ -3,8 +3,7 @@
 from __future__ import annotations
 
 import csv
-from collections.abc import Iterator, Sequence
-from contextlib import contextmanager
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Annotated, Any
 
@@ -14,7 +13,14 @@ import typer
 from skisnow._errors import InputError
 from skisnow._values import parse_values
 from skisnow.cli._app import app
-from skisnow.cli._render import _jsonable, console, emit_json, err_console, print_table
+from skisnow.cli._render import (
+    _jsonable,
+    console,
+    emit_json,
+    err_console,
+    print_table,
+    progress_bar,
+)
 
 _JSON = typer.Option(False, "--json", help="Print one JSON document to stdout, nothing else.")
 _SNOW = typer.Option(..., "--snow-modulus-mpa", help="Young's modulus of the snow in MPa.")
@@ -30,28 +36,6 @@ _OUT = typer.Option(None, "--out", help="Folder for the CSV tables and the figur
 _MODEL = typer.Option(
     "rigid", "--ski-model", help="rigid (the paper's rigid loaded profile) or flexible."
 )
-
-
-@contextmanager
-def _bar(label: str, enabled: bool) -> Iterator[Any]:
-    """A Rich progress bar on stderr; yields ``update(done, total)``."""
-    from rich.progress import BarColumn, MofNCompleteColumn, Progress, TimeElapsedColumn
-
-    with Progress(
-        f"[bold]{label}",
-        BarColumn(),
-        MofNCompleteColumn(),
-        TimeElapsedColumn(),
-        console=err_console,
-        transient=True,
-        disable=not enabled,
-    ) as progress:
-        task = progress.add_task(label, total=None)
-
-        def update(done: int, total: int) -> None:
-            progress.update(task, completed=done, total=total)
-
-        yield update
 
 
 def write_csv(path: Path, records: Sequence[dict[str, Any]]) -> Path:
@@ -148,7 +132,7 @@ def compare(
     moduli = parse_values(snow_range_mpa, name="--snow-range-mpa")
     if moduli.size < 2 or np.any(moduli <= 0):
         raise InputError("--snow-range-mpa needs at least two positive moduli in MPa")
-    with _bar("compare", not json_out) as update:
+    with progress_bar("compare", disable=json_out) as update:
         cmp = compare_fleet(
             skis,
             body_mass=body_mass_kg,
@@ -164,7 +148,7 @@ def compare(
     crit = CRITERIA[criterion]
     records = cmp.records()
     ranking = cmp.ranking(criterion)
-    with _bar("ranking across snow", not json_out) as update:
+    with progress_bar("ranking across snow", disable=json_out) as update:
         snow = rank_across_snow(cmp, criterion, moduli * 1e6, n_points=points, progress=update)
     snow_records = [
         {
@@ -276,7 +260,7 @@ def pairs(
 
     _check_positive("--body-mass-kg", body_mass_kg)
     _check_positive("--snow-modulus-mpa", snow_modulus_mpa)
-    with _bar("pairs", not json_out) as update:
+    with progress_bar("pairs", disable=json_out) as update:
         result = match_pairs(
             skis,
             body_mass=body_mass_kg,
@@ -495,7 +479,7 @@ def cycle(
         histories.append((load_history.stem, h.resample(frames) if frames else h))
     results = []
     for name, history in histories:
-        with _bar(f"cycle {name}", not json_out) as update:
+        with progress_bar(f"cycle {name}", disable=json_out) as update:
             ds = run_cycle(
                 ski,
                 history,
@@ -518,7 +502,7 @@ def cycle(
             from skisnow.plot import animate_cycle
 
             target = animation.with_name(f"{animation.stem}{suffix}{animation.suffix}")
-            with _bar(f"animation {name}", not json_out) as update:
+            with progress_bar(f"animation {name}", disable=json_out) as update:
                 files.append(str(animate_cycle(ds, target, progress=update)))
     summaries = [{"cycle": name, **summary_record(ds)} for name, ds in results]
     notes = [ds.attrs["route_note"] for _, ds in results if ds.attrs["route_note"]]
