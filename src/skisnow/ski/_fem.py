@@ -4,9 +4,10 @@ The finite-element core of the virtual ski (:mod:`skisnow.ski._beam`): element s
 ∫ EI N''ᵀ N'' dx with 4-point Gauss–Legendre (EI(x) tabulated or constant), the global matrix,
 Hermite interpolation of nodal deflections and slopes, the consistent load vector of a boot
 plate, and the clamped banded assembly whose flexibility matrix the contact LCP uses. Hermite
-cubics are exact for the Euler–Bernoulli equation with nodal loads and piecewise-constant EI
-(Zienkiewicz & Taylor 2000, §2). The closed-form deflections of the two textbook cases (Gere &
-Goodno 2009, Table G-1/G-2) are here too, as references for the tests. SI units.
+cubics reproduce the Euler–Bernoulli solution at the nodes for nodal loads and piecewise-constant
+EI. The closed-form deflections of two textbook cases (simply supported beam under a centre
+load, F L³/(48 EI); cantilever under a tip load, F L³/(3 EI)) are here too, as references for
+the tests. SI units.
 """
 
 from __future__ import annotations
