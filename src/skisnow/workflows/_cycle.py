@@ -51,6 +51,7 @@ def run_cycle(
     profile_source: Literal["auto", "network", "beam"] = "auto",
     n_points: int = 4096,
     keep_fields: bool = True,
+    warm_start: bool = True,
     progress: Callable[[int, int], None] | None = None,
 ):
     """Contact of one ski over a load history → an :class:`xarray.Dataset` over time.
@@ -71,6 +72,9 @@ def run_cycle(
         Stations along the ski.
     keep_fields
         Keep h(x, t), p(x, t) and the snow displacement u(x, t) (for figures and animations).
+    warm_start
+        Start each frame's contact iteration from the previous loaded frame's pressure (it
+        changes the iterations, not the answer; ``False`` only to measure what it saves).
     progress
         Called as ``progress(done, total)`` after each frame.
 
@@ -118,6 +122,8 @@ def run_cycle(
     translation = np.full(n_t, np.nan)
     rotation = np.full(n_t, np.nan)
     converged = np.ones(n_t, dtype=bool)
+    iterations = np.zeros(n_t, dtype=np.int64)
+    notes: list[str] = []
     fields = (
         {k: np.zeros((n_t, x.size)) for k in ("pressure", "snow_displacement")}
         if keep_fields
@@ -143,7 +149,9 @@ def run_cycle(
                     f"({mass[i]:.1f} kg at {history.load_position[i] * 1e3:.0f} mm): {exc}"
                 ) from exc
             sol, zones = case.solution, case.zones
-            start = sol.pressure
+            start = sol.pressure if warm_start else None
+            iterations[i] = sol.iterations
+            notes += [f"t = {history.time[i]:g} s: {w}" for w in case.warnings]
             for j, name in enumerate(ZONES):
                 z = zones[name]
                 for k in _ZONE_FIELDS:
@@ -175,6 +183,7 @@ def run_cycle(
         "translation": ("time", translation, {"units": "m"}),
         "rotation": ("time", rotation, {"units": "rad"}),
         "converged": ("time", converged, {}),
+        "iterations": ("time", iterations, {"long_name": "contact solver iterations"}),
     }
     for k, (unit, long_name) in _ZONE_FIELDS.items():
         data[k] = (tz, zone_vals[k], {"units": unit, "long_name": long_name})
@@ -198,6 +207,7 @@ def run_cycle(
             "snow_modulus": float(snow_modulus),
             "route": route,
             "route_note": note or "",
+            "warnings": "\n".join(notes),
             "n_points": int(x.size),
             "unloaded_mass": UNLOADED_MASS,
         },
