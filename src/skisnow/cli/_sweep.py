@@ -7,9 +7,9 @@ from typing import Annotated
 
 import typer
 
-from skisnow._errors import SkisnowError
+from skisnow._errors import InputError, SkisnowError
 from skisnow.cli._app import app
-from skisnow.cli._render import emit_json, print_table, progress_bar
+from skisnow.cli._render import emit_json, err_console, print_table, progress_bar
 from skisnow.cli._ski import resolve_profile_source
 
 
@@ -183,9 +183,30 @@ def report(
         str, typer.Option("--snow-modulus-mpa", help="Snow moduli of the maps (MPa).")
     ] = "20:400:40",
     n_points: Annotated[int, typer.Option("--n-points", help="Grid points along the ski.")] = 4096,
+    stride: Annotated[
+        str,
+        typer.Option(
+            "--stride",
+            help="Load cycle shown at the body mass: auto (diagonal for a classic ski, skate_g3 "
+            "for a skate ski), diagonal, double_poling, skate_g3 or none.",
+        ),
+    ] = "auto",
+    compare_with: Annotated[
+        list[str] | None,
+        typer.Option(
+            "--compare-with", help="Another ski (name or file) for the fleet table; repeatable."
+        ),
+    ] = None,
+    day_snow_mpa: Annotated[
+        float,
+        typer.Option(
+            "--day-snow-mpa", help="Snow modulus (MPa) of the stride and the fleet comparison."
+        ),
+    ] = 100.0,
     json_out: Annotated[bool, typer.Option("--json", help="Print one JSON document.")] = False,
 ) -> None:
-    """Write one self-contained HTML report of a ski (metrics, zones at standard loads, maps)."""
+    """Write one self-contained HTML report of a ski (metrics, zones at standard loads, maps,
+    the contact over a stride, and a fleet table with --compare-with)."""
     from skisnow.pipeline import study_ski
     from skisnow.report import write_report
     from skisnow.sweep import parse_values
@@ -204,7 +225,33 @@ def report(
         map_moduli=tuple(parse_values(snow_modulus_mpa, name="--snow-modulus-mpa") * 1e6),
         n_points=n_points,
     )
-    path = write_report(study, out)
+    from skisnow.workflows import TEMPLATES, compare_fleet, run_cycle, template_history
+
+    cycles = []
+    if stride == "auto":
+        stride = "diagonal" if study.ski.kind == "classic" else "skate_g3"
+    if stride != "none":
+        if stride not in TEMPLATES:
+            raise InputError(f"--stride must be auto, none or one of {', '.join(TEMPLATES)}")
+        history = template_history(stride, body_mass=body_mass_kg)
+        with progress_bar(f"stride {stride}", disable=json_out) as bar:
+            cycles.append(
+                run_cycle(
+                    ski, history, snow_modulus=day_snow_mpa * 1e6, n_points=n_points, progress=bar
+                )
+            )
+    fleet = None
+    if compare_with:
+        fleet = compare_fleet(
+            [ski, *compare_with],
+            body_mass=body_mass_kg,
+            snow_modulus=day_snow_mpa * 1e6,
+            load_position=load_position_mm * 1e-3,
+            n_points=n_points,
+        )
+        for spec, message in fleet.failures:
+            err_console.print(f"[bold red]not compared[/]: {spec}: {message}")
+    path = write_report(study, out, cycles=cycles, fleet=fleet)
     if json_out:
         emit_json({"report": str(path)})
         return

@@ -15,6 +15,7 @@ computes nothing:
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
@@ -151,26 +152,40 @@ def _maps_section(study: Any) -> Section:
     return Section("Maps over load and snow", (note,), items)
 
 
-def build_report(study: Any) -> str:
-    """The report of a :class:`skisnow.pipeline.SkiStudy` as an HTML string."""
+def build_report(study: Any, *, cycles: Sequence[Any] = (), fleet: Any = None) -> str:
+    """The report of a :class:`skisnow.pipeline.SkiStudy` as an HTML string.
+
+    ``cycles``: load cycles of the ski (:func:`skisnow.workflows.run_cycle` Datasets, e.g. the
+    stride at the athlete's weight); ``fleet``: a :class:`skisnow.workflows.FleetComparison`
+    when several skis are compared. Each adds its section.
+    """
     from skisnow import __version__
+    from skisnow.report._workflows import cycle_section, fleet_section
 
     name = study.ski.name
+    sections = [_metrics_section(study), _standard_loads(study), _maps_section(study)]
+    sections += [cycle_section(ds) for ds in cycles]
+    if fleet is not None:
+        sections.append(fleet_section(fleet))
     return render_page(
         f"skisnow report: {name} ski",
         f"How the {name} ski meets the snow — body mass {study.body_mass:g} kg, load at "
         f"{study.load_position * 1e3:g} mm from the balance point",
-        [_metrics_section(study), _standard_loads(study), _maps_section(study)],
+        sections,
         footer=f"skisnow {__version__}. Method: Kalliorinne et al., Lubricants 11 (2023) "
         "(camber under load, half-space contact with force and moment balance, zones, "
         "Breitschädel criterion). Self-contained page: no scripts, no external resources.",
     )
 
 
-def write_report(study: Any, out_dir: str | Path) -> Path:
-    """Write ``{out_dir}/{ski}_report.html`` of a :class:`skisnow.pipeline.SkiStudy`; return
-    its path."""
+def write_report(
+    study: Any, out_dir: str | Path, *, cycles: Sequence[Any] = (), fleet: Any = None
+) -> Path:
+    """Write ``{out_dir}/{ski}_report.html`` of a :class:`skisnow.pipeline.SkiStudy` (with the
+    optional ``cycles`` and ``fleet`` sections of :func:`build_report`); return its path."""
     from skisnow._atomic import atomic_write
 
     path = Path(out_dir) / f"{study.ski.name}_report.html"
-    return atomic_write(path, build_report(study))  # a killed run leaves no half page
+    return atomic_write(
+        path, build_report(study, cycles=cycles, fleet=fleet)
+    )  # a killed run leaves no half page

@@ -1,0 +1,25 @@
+"""The report's workflow sections render the workflow results (numbers as computed)."""
+
+from __future__ import annotations
+
+from skisnow.report._html import render_page
+from skisnow.report._workflows import cycle_section, fleet_section
+from skisnow.workflows import compare_fleet, kick_contact_summary, run_cycle, template_history
+
+
+def test_stride_and_fleet_sections_show_the_computed_numbers() -> None:
+    ds = run_cycle(
+        "classic",
+        template_history("diagonal", body_mass=75, n_frames=12),
+        snow_modulus=100e6,
+        n_points=512,
+    )
+    cmp = compare_fleet(["classic", "skate"], body_mass=75, snow_modulus=100e6, n_points=512)
+    page = render_page("t", "s", [cycle_section(ds), fleet_section(cmp, criterion="peak-pressure")])
+    s = kick_contact_summary(ds)
+    assert f"{s['contact_time']:.3g}" in page
+    assert "grip wax touches" in page and "Contact over a cycle" in page
+    assert page.count("<svg") == 2
+    ranking = cmp.ranking("peak-pressure")
+    assert f"{ranking[0]['full_total_peak_pressure_kpa']:.4g}" in page
+    assert "lower is better" in page
