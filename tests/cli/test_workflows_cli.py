@@ -75,11 +75,16 @@ def test_cycle_from_a_file_and_a_template(capsys, tmp_path: Path) -> None:
         [9.80665 * (40 + 10 * i) for i in range(6)]
     )
     assert (tmp_path / "c" / "cycle.csv").is_file() and (tmp_path / "c" / "cycle.png").is_file()
+    import xarray as xr
+
+    with xr.open_dataset(tmp_path / "c" / "cycle.nc") as ds:  # the whole Dataset, SI
+        assert ds["load"].values == pytest.approx([f["force_n"] for f in frames])
     gif = tmp_path / "stride.gif"
     code, doc, _ = run(
         capsys,
         ["cycle", "skate", "--template", "diagonal", "--body-mass-kg", "90", "--frames", "21",
-         "--snow-modulus-mpa", "100", "--animation", str(gif), *SMALL],
+         "--snow-modulus-mpa", "100", "--animation", str(gif), "--out", str(tmp_path / "s"),
+         *SMALL],
     )  # fmt: skip
     assert code == 0
     assert gif.is_file() and gif.read_bytes()[:6] in (b"GIF89a", b"GIF87a")

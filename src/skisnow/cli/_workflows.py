@@ -10,6 +10,7 @@ from typing import Annotated, Any
 import numpy as np
 import typer
 
+from skisnow._atomic import atomic_path
 from skisnow._errors import InputError
 from skisnow._values import parse_values
 from skisnow.cli._app import app
@@ -40,9 +41,8 @@ _MODEL = typer.Option(
 
 def write_csv(path: Path, records: Sequence[dict[str, Any]]) -> Path:
     """Write records as a CSV table (header = the keys of the first record; NaN → empty)."""
-    path.parent.mkdir(parents=True, exist_ok=True)
     keys = list(records[0]) if records else []
-    with path.open("w", newline="", encoding="utf-8") as fh:
+    with atomic_path(path) as tmp, tmp.open("w", newline="", encoding="utf-8") as fh:
         writer = csv.DictWriter(fh, fieldnames=keys)
         writer.writeheader()
         for rec in records:
@@ -497,13 +497,20 @@ def cycle(
             from skisnow.plot import plot_cycle, save_figure
 
             files.append(str(write_csv(out / f"cycle{suffix}.csv", cycle_records(ds))))
+            with atomic_path(out / f"cycle{suffix}.nc") as tmp:
+                ds.to_netcdf(tmp)  # the whole Dataset (SI units in the attributes)
+            files.append(str(out / f"cycle{suffix}.nc"))
             files += [str(p) for p in save_figure(plot_cycle(ds), out / f"cycle{suffix}")]
         if animation is not None:
             from skisnow.plot import animate_cycle
 
             target = animation.with_name(f"{animation.stem}{suffix}{animation.suffix}")
-            with progress_bar(f"animation {name}", disable=json_out) as update:
-                files.append(str(animate_cycle(ds, target, progress=update)))
+            with (
+                progress_bar(f"animation {name}", disable=json_out) as update,
+                atomic_path(target) as tmp,
+            ):
+                animate_cycle(ds, tmp, progress=update)
+            files.append(str(target))
     summaries = [{"cycle": name, **summary_record(ds)} for name, ds in results]
     notes = [ds.attrs["route_note"] for _, ds in results if ds.attrs["route_note"]]
     if out is not None:
