@@ -28,7 +28,7 @@ def test_compare_names_a_broken_file_and_compares_the_rest(capsys, tmp_path: Pat
          "--snow-modulus-mpa", "30", "--snow-range-mpa", "30,300", "--criterion",
          "peak-pressure", "--out", str(tmp_path / "out"), *SMALL],
     )  # fmt: skip
-    assert code == 1  # something was left out
+    assert code == 2  # bad input: something was left out
     assert [r["ski"] for r in doc["skis"]] == ["classic", "skate"]
     assert doc["failures"][0]["ski"] == str(broken)
     assert doc["criterion"]["better"] == "lower"
@@ -106,6 +106,6 @@ def test_cycle_bad_history_is_one_line_naming_line_and_column(
     hist.write_text("\n".join(rows) + "\n", encoding="utf-8")
     code = main(["cycle", "classic", "--load-history", str(hist), "--snow-modulus-mpa", "100"])
     err = capsys.readouterr().err.strip()
-    assert code == 1
+    assert code == 2  # bad input
     assert len(err.splitlines()) == 1
     assert "line 4" in err and repr(column) in err

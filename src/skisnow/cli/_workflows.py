@@ -13,7 +13,7 @@ import typer
 from skisnow._atomic import atomic_path
 from skisnow._errors import InputError
 from skisnow._values import parse_values
-from skisnow.cli._app import app
+from skisnow.cli._app import EXIT_INPUT, app, report_converged, run_annotations
 from skisnow.cli._render import (
     _jsonable,
     console,
@@ -120,8 +120,8 @@ def compare(
 ) -> None:
     """Compare a fleet side by side at ½ and 1 body weight; rank it on one snow and across snow.
 
-    A ski that cannot be read is named on stderr and left out; the others are compared (exit 1
-    when any was left out).
+    A ski that cannot be read is named on stderr and left out; the others are compared (exit 2,
+    bad input, when any was left out).
     """
     from skisnow.workflows import CRITERIA, compare_fleet, rank_across_snow
 
@@ -143,6 +143,9 @@ def compare(
             progress=update,
         )
     _report_failures(cmp.failures)
+    for entry in cmp.entries:
+        for case in entry.cases.values():
+            report_converged(case.converged)
     if not cmp.entries:
         raise InputError("no ski of the fleet could be compared")
     crit = CRITERIA[criterion]
@@ -178,6 +181,7 @@ def compare(
         files += [str(p) for p in save_figure(plot_fleet(cmp), out / "fleet")]
         files += [str(p) for p in save_figure(plot_snow_ranking(snow), out / "snow_ranking")]
     doc = {
+        **run_annotations(),
         "body_mass_kg": body_mass_kg,
         "snow_modulus_mpa": snow_modulus_mpa,
         "load_position_mm": load_position_mm,
@@ -234,7 +238,7 @@ def compare(
         for f in files:
             console.print(f"wrote {f}")
     if cmp.failures:
-        raise typer.Exit(1)
+        raise typer.Exit(EXIT_INPUT)
 
 
 # ------------------------------------------------------------------------------- pairs
@@ -303,6 +307,7 @@ def pairs(
     if json_out:
         emit_json(
             {
+                **run_annotations(),
                 "distance": definition,
                 "pairs": records,
                 "spare": result.spare,
@@ -335,7 +340,7 @@ def pairs(
         for f in files:
             console.print(f"wrote {f}")
     if result.failures:
-        raise typer.Exit(1)
+        raise typer.Exit(EXIT_INPUT)
 
 
 # ------------------------------------------------------------------------------- cycle
@@ -489,6 +494,7 @@ def cycle(
                 keep_fields=animation is not None,
                 progress=update,
             )
+        report_converged(bool(ds["converged"].all()))
         results.append((name, ds))
     files: list[str] = []
     for name, ds in results:
@@ -518,6 +524,7 @@ def cycle(
     if json_out:
         emit_json(
             {
+                **run_annotations(),
                 "ski": results[0][1].attrs["ski"],
                 "snow_modulus_mpa": snow_modulus_mpa,
                 "summaries": summaries,
