@@ -138,3 +138,38 @@ def test_a_position_off_the_ski_is_refused() -> None:
     h = LoadHistory(time=[0, 0.1], force=[500, 500], load_position=[-0.12, -1.5])
     with pytest.raises(InputError, match=r"sample 1 .*off the ski"):
         run_cycle("skate", h, snow_modulus=100e6, n_points=N)
+
+
+def test_flexible_route_balances_and_a_stiff_ski_gives_the_rigid_answer() -> None:
+    """The flexible ski (beam and snow together) carries every frame's load; with EI × 10⁶ it
+    no longer bends, and the contact is that of its rigid profile."""
+    import dataclasses
+
+    from skisnow.ski import get_ski
+    from skisnow.workflows import FleetSki
+
+    base = get_ski("skate")
+    stiff = dataclasses.replace(
+        base, name="stiff", stiffness_values=tuple(v * 1e6 for v in base.stiffness_values)
+    )
+    fs = FleetSki(label="stiff", ski=stiff, origin="test")
+    h = LoadHistory(time=[0.0, 0.1, 0.2], force=[300.0, 600.0, 450.0], load_position=[-0.12] * 3)
+    flex = run_cycle(fs, h, snow_modulus=100e6, n_points=N, ski_model="flexible")
+    rigid = run_cycle(fs, h, snow_modulus=100e6, n_points=N, ski_model="rigid")
+    assert flex.attrs["route"] == "flexible" and rigid.attrs["route"] == "beam"
+    assert flex["converged"].all()
+    x = flex["x"].values
+    dx = x[1] - x[0]
+    for i in range(3):
+        p = flex["pressure"].values[i]
+        assert p.min() >= 0.0
+        assert p.sum() * dx * stiff.width == pytest.approx(h.force[i], rel=1e-6)
+    for zone in ("rear", "front", "total"):
+        np.testing.assert_allclose(
+            flex["length"].sel(zone=zone).values, rigid["length"].sel(zone=zone).values, atol=dx
+        )
+    np.testing.assert_allclose(
+        flex["mean_pressure"].sel(zone="total").values,
+        rigid["mean_pressure"].sel(zone="total").values,
+        rtol=0.02,
+    )

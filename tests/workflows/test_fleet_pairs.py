@@ -161,3 +161,25 @@ def test_odd_fleet_leaves_the_best_spare_and_a_broken_file_out(tmp_path: Path) -
     )
     assert res.total == pytest.approx(best, rel=1e-12)
     assert res.spare is not None and len(res.pairs) == 2
+
+
+def test_ski_files_enter_the_fleet(tmp_path: Path) -> None:
+    from skisnow.ski import write_ski
+
+    stiff = variant("stiff", stiffness=1.5).ski
+    write_ski(stiff, tmp_path / "stiff.json")
+    write_ski(get_ski("classic"), tmp_path / "classic_copy.json")
+    cmp = compare_fleet(
+        ["classic", str(tmp_path / "classic_copy.json"), str(tmp_path / "stiff.json")],
+        body_mass=70,
+        snow_modulus=100e6,
+        n_points=N,
+    )
+    assert not cmp.failures
+    plain, copy, stiffer = cmp.records()
+    assert copy["profile_route"] == "network"  # the shipped ski, unchanged, keeps its network
+    assert stiffer["profile_route"] == "beam"
+    for key in ("full_total_length_mm", "full_total_mean_pressure_kpa", "camber_half_mm"):
+        assert copy[key] == pytest.approx(plain[key], rel=1e-12)
+    # a stiffer ski closes its pocket later and stands on shorter glide zones
+    assert stiffer["closing_load_kg"] > plain["closing_load_kg"]

@@ -445,11 +445,6 @@ def cycle(
     _check_positive("--snow-modulus-mpa", snow_modulus_mpa)
     if ski_model not in ("rigid", "flexible"):
         raise InputError(f"--ski-model must be rigid or flexible, got {ski_model!r}")
-    if ski_model == "flexible":
-        raise InputError(
-            "--ski-model flexible is not in this version of skisnow; use rigid (the profile "
-            "route then falls back to the beam outside the network's domain)"
-        )
     if frames is not None and frames < 2:
         raise InputError(f"--frames must be at least 2, got {frames}")
     histories = []
@@ -492,6 +487,7 @@ def cycle(
                 profile_source=profile_source,  # type: ignore[arg-type]
                 n_points=points,
                 keep_fields=animation is not None,
+                ski_model=ski_model,  # type: ignore[arg-type]
                 progress=update,
             )
         report_converged(bool(ds["converged"].all()))

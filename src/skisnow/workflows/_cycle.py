@@ -52,6 +52,7 @@ def run_cycle(
     n_points: int = 4096,
     keep_fields: bool = True,
     warm_start: bool = True,
+    ski_model: Literal["rigid", "flexible"] = "rigid",
     progress: Callable[[int, int], None] | None = None,
 ):
     """Contact of one ski over a load history → an :class:`xarray.Dataset` over time.
@@ -72,6 +73,10 @@ def run_cycle(
         Stations along the ski.
     keep_fields
         Keep h(x, t), p(x, t) and the snow displacement u(x, t) (for figures and animations).
+    ski_model
+        ``'rigid'``: the loaded profile pressed into the snow (the paper's method);
+        ``'flexible'``: the ski's beam and the snow solved together (no network, no profile
+        route; needs the ski's EI(x) and z0(x), which every ski file has).
     warm_start
         Start each frame's contact iteration from the previous loaded frame's pressure (it
         changes the iterations, not the answer; ``False`` only to measure what it saves).
@@ -106,11 +111,16 @@ def run_cycle(
     mass = history.mass
     loaded = mass >= UNLOADED_MASS
     idx = np.flatnonzero(loaded)
-    route, note = choose_route(
-        fs, mass[idx], history.load_position[idx], x, requested=profile_source
-    )
+    if ski_model not in ("rigid", "flexible"):
+        raise InputError(f"ski model must be rigid or flexible, got {ski_model!r}")
     heights = np.zeros((n_t, x.size))
-    heights[idx] = loaded_profiles(fs, mass[idx], history.load_position[idx], x, route=route)
+    if ski_model == "flexible":
+        route, note = "flexible", None
+    else:
+        route, note = choose_route(
+            fs, mass[idx], history.load_position[idx], x, requested=profile_source
+        )
+        heights[idx] = loaded_profiles(fs, mass[idx], history.load_position[idx], x, route=route)
     if not loaded.all():
         # the unloaded ski: its free camber, shown in figures (not solved)
         heights[~loaded] = fs.ski.free_camber(x)
@@ -149,6 +159,7 @@ def run_cycle(
                     f"({mass[i]:.1f} kg at {history.load_position[i] * 1e3:.0f} mm): {exc}"
                 ) from exc
             sol, zones = case.solution, case.zones
+            heights[i] = case.height  # the bent ski on the flexible route
             start = sol.pressure if warm_start else None
             iterations[i] = sol.iterations
             notes += [f"t = {history.time[i]:g} s: {w}" for w in case.warnings]
@@ -206,6 +217,7 @@ def run_cycle(
             "history_source": history.source,
             "snow_modulus": float(snow_modulus),
             "route": route,
+            "ski_model": ski_model,
             "route_note": note or "",
             "warnings": "\n".join(notes),
             "n_points": int(x.size),

@@ -185,11 +185,6 @@ def _check_inputs(body_mass: float, snow_modulus: float, ski_model: str) -> None
         raise InputError(f"snow modulus must be a positive number of Pa, got {snow_modulus!r}")
     if ski_model not in ("rigid", "flexible"):
         raise InputError(f"ski model must be rigid or flexible, got {ski_model!r}")
-    if ski_model == "flexible":
-        raise InputError(
-            "the flexible ski (beam and snow solved together) is not in this version of skisnow; "
-            "use --ski-model rigid"
-        )
 
 
 def _entry(
@@ -199,14 +194,19 @@ def _entry(
     snow_modulus: float,
     load_position: float,
     n_points: int,
+    ski_model: str,
 ) -> FleetEntry:
     from skisnow.ski import ski_metrics
 
     x = stations(fs, n_points)
     masses = np.array([_LOADS[k] * body_mass for k in _LOADS])
     positions = np.full(masses.size, load_position)
-    route, note = choose_route(fs, masses, positions, x)
-    heights = loaded_profiles(fs, masses, positions, x, route=route)
+    if ski_model == "flexible":
+        route, note = "flexible", None
+        heights = [None] * masses.size
+    else:
+        route, note = choose_route(fs, masses, positions, x)
+        heights = loaded_profiles(fs, masses, positions, x, route=route)
     cases = {
         key: solve_loaded(
             fs,
@@ -252,7 +252,8 @@ def compare_fleet(
     load_position
         x_m [m] of the load (default 120 mm behind the balance point, the paper's reference).
     ski_model
-        ``'rigid'`` (the paper's rigid loaded profile).
+        ``'rigid'`` (the paper's rigid loaded profile) or ``'flexible'`` (the ski's beam and the
+        snow solved together, :func:`skisnow.contact.solve_flexible`).
     n_points
         Stations along each ski.
     progress
@@ -276,6 +277,7 @@ def compare_fleet(
                     snow_modulus=snow_modulus,
                     load_position=load_position,
                     n_points=n_points,
+                    ski_model=ski_model,
                 )
             )
         except SkisnowError as exc:
@@ -357,10 +359,13 @@ def rank_across_snow(
             continue
         x = stations(fs, n_points)
         m = comparison.body_mass
-        route, _ = choose_route(fs, np.array([m]), np.array([comparison.load_position]), x)
-        (h,) = loaded_profiles(
-            fs, np.array([m]), np.array([comparison.load_position]), x, route=route
-        )
+        if comparison.ski_model == "flexible":
+            route, h = "flexible", None
+        else:
+            route, _ = choose_route(fs, np.array([m]), np.array([comparison.load_position]), x)
+            (h,) = loaded_profiles(
+                fs, np.array([m]), np.array([comparison.load_position]), x, route=route
+            )
         start = None
         for j, e in enumerate(moduli):
             case = solve_loaded(

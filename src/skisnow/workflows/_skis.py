@@ -70,7 +70,10 @@ def resolve_ski(spec: str | Ski | FleetSki) -> FleetSki:
                 "stiffness and camber, which this version of skisnow does not have"
             )
         return FleetSki(label=path.name, ski=identify(bench), origin="bench file (identified)")
-    return FleetSki(label=path.name, ski=get_ski(str(path)), origin="ski file")
+    ski = get_ski(str(path))
+    # a file holding a shipped ski unchanged may use that ski's camber network
+    shipped = ski.name if ski.name in SHIPPED_SKIS and get_ski(ski.name) == ski else None
+    return FleetSki(label=path.name, ski=ski, origin="ski file", network=shipped)
 
 
 def resolve_fleet(
