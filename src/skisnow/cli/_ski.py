@@ -94,8 +94,7 @@ def skis(
         out.parent.mkdir(parents=True, exist_ok=True)
         write_ski(ski, out)
     if figure is not None:
-        from skisnow.plot import plot_passport
-        from skisnow.plot._style import save_figure
+        from skisnow.plot import plot_passport, save_figure
 
         fmt = figure.suffix.lower().lstrip(".")
         if fmt not in ("png", "svg", "pdf"):

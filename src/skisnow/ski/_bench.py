@@ -19,7 +19,7 @@ from numpy.typing import ArrayLike, NDArray
 from skisnow import __version__
 from skisnow._errors import InputError
 from skisnow._values import sorted_unique
-from skisnow.io._bench import BenchData
+from skisnow.io import BenchData
 from skisnow.ski._beam import DEFAULT_BOOT_LENGTH, DEFAULT_N_ELEMENTS, BeamSolution, solve_beam
 from skisnow.ski._skis import Ski, get_ski
 
