@@ -37,7 +37,9 @@ __all__ = [
     "allow_implausible",
     "available_memory",
     "check_array",
+    "check_grid_points",
     "check_memory",
+    "check_option_values",
     "check_value",
     "implausible_allowed",
     "positive_finite",
@@ -331,6 +333,32 @@ def check_array(
                 f"it, pass {OVERRIDE_HINT}."
             )
     return v
+
+
+def check_option_values(values: np.ndarray, quantity: str | Quantity, option: str) -> np.ndarray:
+    """Check the values of a grid option (``--mass-kg 5:130:5``) in its field unit."""
+    return check_array(
+        values, quantity, where=option, row_label=lambda i: f"value {i + 1}", check_span=False
+    )
+
+
+#: Bytes a contact solve or a sampled profile needs per grid point (a generous bound: the FFT
+#: solver keeps ~40 float64 work arrays of the grid size).
+BYTES_PER_POINT = 8 * 64
+
+
+def check_grid_points(n: int, *, where: str) -> int:
+    """Check a number of grid points (an integer >= 16, plausible, and fitting in memory)."""
+    if isinstance(n, float) and not float(n).is_integer():
+        raise InputError(f"{where}: need a whole number of grid points >= 16, got {n}")
+    n = int(check_value(n, "grid_points", where=where))
+    check_memory(
+        n * BYTES_PER_POINT,
+        where=f"{where} {n}",
+        what=f"a grid of {n} points",
+        hint="use fewer points",
+    )
+    return n
 
 
 def positive_finite(name: str, value: float, unit: str = "") -> float:

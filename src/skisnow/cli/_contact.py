@@ -5,7 +5,6 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Annotated, Any
 
-import numpy as np
 import typer
 
 from skisnow._errors import InputError
@@ -119,14 +118,20 @@ def contact(
         from skisnow.cli._ski import resolve_profile_source
 
         profile_source = resolve_profile_source(profile_source, [ski])
-    for name, value in (
-        ("--mass-kg", mass_kg),
-        ("--snow-modulus-mpa", snow_modulus_mpa),
-        ("--width-mm", width_mm),
-        ("--base-modulus-mpa", base_modulus_mpa),
+    from skisnow._checks import check_grid_points, check_value
+
+    for name, quantity, value in (
+        ("--mass-kg", "mass", mass_kg),
+        ("--load-position-mm", "load_position", load_position_mm),
+        ("--snow-modulus-mpa", "snow_modulus", snow_modulus_mpa),
+        ("--width-mm", "width", width_mm),
+        ("--base-modulus-mpa", "base_modulus", base_modulus_mpa),
+        ("--n-across", "cells_across", n_across),
     ):
-        if value is not None and (not np.isfinite(value) or value <= 0):
-            raise InputError(f"{name} must be a positive number, got {value:g}")
+        if value is not None:
+            check_value(value, quantity, where=name)
+    check_grid_points(points, where="--points")
+    check_grid_points(points * n_across if model == "surface" else points, where="--n-across")
     if model not in MODELS:
         raise InputError(f"--model must be one of {', '.join(MODELS)}, got {model!r}")
     if profile_source not in PROFILE_SOURCES:

@@ -21,7 +21,10 @@ _JSON = typer.Option("--json", help="Print one JSON document to stdout, nothing 
 
 def parse_grain_range(text: str) -> np.ndarray:
     """``START:STOP:STEP`` (inclusive, µm), a list or one value → sorted unique diameters [m]."""
+    from skisnow._checks import check_option_values
+
     values = np.round(parse_values(text, name="--grain-um"), 6)
+    check_option_values(values, "grain", "--grain-um")
     return sorted_unique(values, name="--grain-um", unit="µm", positive=True) * 1e-6
 
 
@@ -31,12 +34,17 @@ def _load(source: str, pixel_um: float | None, height_unit: str, *, seed: int = 
     path = Path(source)
     if not path.exists() and source.strip().upper() in micro.PRESETS:
         return micro.grind_preset(source, seed=seed)
-    pixel = None if pixel_um is None else pixel_um * 1e-6
+    from skisnow._checks import check_value
+
+    pixel = None if pixel_um is None else check_value(pixel_um, "pixel", where="--pixel-um") * 1e-6
     return micro.read_topography(path, pixel_size=pixel, height_unit=height_unit)
 
 
 def _cutoff(cutoff_um: float) -> float | None:
     """--cutoff-um [µm] → the low-pass cut-off [m] (0: no filter)."""
+    from skisnow._checks import check_value
+
+    check_value(cutoff_um, "cutoff", where="--cutoff-um")
     return cutoff_um * 1e-6 if cutoff_um > 0 else None
 
 
@@ -74,6 +82,7 @@ def topo(
     """Roughness parameters of a topography (Sa, Sq, Sdq, Ssk, Sku; Ra, Rz across the ski)."""
     from skisnow import micro
 
+    _cutoff(cutoff_um)  # checked before the file is read
     t = _load(file, pixel_um, height_unit)
     r = micro.roughness(t, cutoff=_cutoff(cutoff_um), form=form)
     doc = {
@@ -126,7 +135,17 @@ def grind(
 ) -> None:
     """Write a synthetic grinding structure (seeded)."""
     from skisnow import micro
+    from skisnow._checks import check_memory, check_value
 
+    pixel_um = check_value(pixel_um, "pixel", where="--pixel-um")
+    size_um = check_value(size_um, "map_size", where="--size-um")
+    n = size_um / pixel_um
+    check_memory(
+        n * n * 8 * 8,
+        where=f"--size-um {size_um:g} --pixel-um {pixel_um:g}",
+        what=f"a map of {n:.3g} × {n:.3g} pixels",
+        hint="use a smaller map or larger pixels",
+    )
     t = micro.grind_preset(preset, size=size_um * 1e-6, dx=pixel_um * 1e-6, seed=seed)
     path = micro.write_topography(t, out)
     spec = micro.PRESETS[preset.strip().upper()]
@@ -180,8 +199,15 @@ def bearing(
     import warnings
 
     from skisnow import micro
+    from skisnow._checks import check_value
     from skisnow._errors import DomainWarning
 
+    check_value(temperature_c, "temperature", where="--temperature-c")
+    check_value(pressure_kpa, "pressure", where="--pressure-kpa")
+    for option, value in (("--stride", stride), ("--workers", workers)):
+        if value < 1:
+            raise InputError(f"{option}: need an integer >= 1, got {value}")
+    _cutoff(cutoff_um)
     diameters = parse_grain_range(grain_um)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", DomainWarning)
@@ -305,6 +331,9 @@ def rank(
         raise InputError("give a TABLE.csv or --seed-tables")
     doc: dict[str, Any] = {}
     if table is not None:
+        from skisnow._checks import check_value
+
+        check_value(alpha, "alpha", where="--alpha")
         rt = micro.read_rank_table(table, alpha=alpha)
         doc["structures"] = [
             {"structure": s, "glide_time_s": t, "rank": r}

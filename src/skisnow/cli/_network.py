@@ -115,12 +115,20 @@ def predict(
     """Predict the loaded camber profile h(x) with a trained network (paper 000, eq. 1)."""
     import warnings
 
+    from skisnow._checks import check_memory, check_value
     from skisnow._errors import DomainWarning
 
-    if not dx_mm > 0:
-        raise InputError(f"--dx-mm must be > 0, got {dx_mm}")
+    mass_kg = check_value(mass_kg, "mass", where="--mass-kg")
+    load_position_mm = check_value(load_position_mm, "load_position", where="--load-position-mm")
+    dx_mm = check_value(dx_mm, "step_along_ski", where="--dx-mm")
     net = _resolve_model(model)
     d = net.domain
+    check_memory(
+        (d.x_max - d.x_min) / (dx_mm * 1e-3) * 8 * 16,
+        where=f"--dx-mm {dx_mm:g}",
+        what=f"a profile sampled every {dx_mm:g} mm",
+        hint="use a larger step",
+    )
     k0 = int(np.ceil(d.x_min / (dx_mm * 1e-3) - 1e-9))
     k1 = int(np.floor(d.x_max / (dx_mm * 1e-3) + 1e-9))
     x = np.clip(np.arange(k0, k1 + 1) * dx_mm * 1e-3, d.x_min, d.x_max)

@@ -174,14 +174,32 @@ def bench(
     json_out: bool = _JSON,
 ) -> None:
     """Run the virtual camber bench on a shipped ski and write the bench table."""
+    from skisnow._checks import check_memory, check_option_values, check_value
     from skisnow.io import write_bench
     from skisnow.ski import get_ski, run_bench
 
     sk = get_ski(ski)
+    dx_mm = check_value(dx_mm, "step_along_ski", where="--dx-mm")
+    noise_mm = check_value(noise_mm, "noise", where="--noise-mm")
+    check_memory(
+        sk.length / (dx_mm * 1e-3) * 8 * 16,
+        where=f"--dx-mm {dx_mm:g}",
+        what=f"sampling a {sk.length * 1e3:g} mm ski every {dx_mm:g} mm",
+        hint="use a larger step",
+    )
     if out.suffix.lower() not in (".csv", ".parquet"):
         raise InputError(f"--out {out}: use a .csv or .parquet file name")
-    masses = parse_values(mass_kg, name="--mass-kg").tolist()
-    positions = (parse_values(load_position_mm, name="--load-position-mm") * 1e-3).tolist()
+    masses = check_option_values(
+        parse_values(mass_kg, name="--mass-kg"), "mass", "--mass-kg"
+    ).tolist()
+    positions = (
+        check_option_values(
+            parse_values(load_position_mm, name="--load-position-mm"),
+            "load_position",
+            "--load-position-mm",
+        )
+        * 1e-3
+    ).tolist()
     with progress_bar(f"bench {ski}", total=len(set(masses)) * len(set(positions))) as bar:
         data = run_bench(
             sk,
@@ -206,9 +224,12 @@ def metrics_documents(
     source: str, *, body_mass_kg: float, load_position_mm: float
 ) -> list[dict[str, Any]]:
     """Metrics (field units) of a shipped ski or of every ski in a bench file."""
+    from skisnow._checks import check_value
     from skisnow.io import read_bench
     from skisnow.ski import SHIPPED_SKIS, ski_metrics
 
+    body_mass_kg = check_value(body_mass_kg, "mass", where="--body-mass-kg")
+    load_position_mm = check_value(load_position_mm, "load_position", where="--load-position-mm")
     kw = {"body_mass": body_mass_kg, "load_position": load_position_mm * 1e-3}
     if source in SHIPPED_SKIS:
         return [ski_metrics(source, **kw).as_field_units()]

@@ -63,14 +63,29 @@ def sweep(
 
     Interrupted sweeps resume: run the same command again and only missing chunks are computed.
     """
+    from skisnow._checks import check_grid_points, check_option_values
     from skisnow.constants import MM, MPA
     from skisnow.sweep import SweepSpec, open_sweep, parse_values, run_sweep, save_netcdf
 
+    # Every input is checked BEFORE anything is created: a typo never poisons --out.
+    check_grid_points(n_points, where="--n-points")
+    if workers is not None and workers < 0:
+        raise InputError(f"--workers: need >= 0 (0: no Dask), got {workers}")
     spec = SweepSpec(
         skis=tuple(ski),
-        masses=parse_values(mass_kg, name="--mass-kg"),
-        load_positions=parse_values(load_position_mm, name="--load-position-mm") * MM,
-        snow_moduli=parse_values(snow_modulus_mpa, name="--snow-modulus-mpa") * MPA,
+        masses=check_option_values(parse_values(mass_kg, name="--mass-kg"), "mass", "--mass-kg"),
+        load_positions=check_option_values(
+            parse_values(load_position_mm, name="--load-position-mm"),
+            "load_position",
+            "--load-position-mm",
+        )
+        * MM,
+        snow_moduli=check_option_values(
+            parse_values(snow_modulus_mpa, name="--snow-modulus-mpa"),
+            "snow_modulus",
+            "--snow-modulus-mpa",
+        )
+        * MPA,
         model=model,
         profile_source=resolve_profile_source(profile_source, ski),
         n_points=n_points,

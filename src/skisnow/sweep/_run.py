@@ -23,7 +23,9 @@ from skisnow.sweep._grid import SweepSpec
 from skisnow.sweep._store import (
     SPEC_ATTR,
     ChunkWriter,
+    StoreLock,
     check_same_sweep,
+    check_skeleton,
     create_store,
     done_chunks,
 )
@@ -95,7 +97,9 @@ def _attrs(spec: SweepSpec, fn: ChunkFunction) -> dict[str, Any]:
 def prepare_store(
     path: str | Path, spec: SweepSpec, fn: ChunkFunction
 ) -> set[tuple[int, int, int]]:
-    """Create the store, or check that an existing one holds the same sweep.
+    """Create the store (atomically, see :func:`~skisnow.sweep._store.create_store`), or
+    check that an existing one holds the same sweep and is complete. Call it holding the
+    store's lock (:func:`run_sweep` does).
 
     Returns the set of chunk keys already complete.
     """
@@ -112,6 +116,7 @@ def prepare_store(
                 "--out"
             ) from None
         check_same_sweep(path, spec, stored)
+        check_skeleton(path, spec)
         if stored.get("skisnow_version") != attrs["skisnow_version"]:
             raise InputError(
                 f"{path} was started by skisnow {stored.get('skisnow_version')}, this is "
@@ -230,8 +235,28 @@ def run_sweep(
         raise InputError(f"workers: need >= 0, got {workers}")
     if retries < 0:
         raise InputError(f"retries: need >= 0, got {retries}")
+    # One sweep per store at a time: a second one is refused with a clear message.
+    with StoreLock(Path(path)):
+        return _run_locked(
+            spec, Path(path), chunk_function=chunk_function, scheduler=scheduler,
+            workers=workers, client=client, retries=retries, on_progress=on_progress,
+            shared_function=shared_function,
+        )  # fmt: skip
+
+
+def _run_locked(
+    spec: SweepSpec,
+    path: Path,
+    *,
+    chunk_function: ChunkFunction,
+    scheduler: str | None,
+    workers: int | None,
+    client: Any,
+    retries: int,
+    on_progress: ProgressCallback | None,
+    shared_function: Callable[[SweepSpec, str, float], Any] | None,
+) -> SweepRun:
     t0 = time.perf_counter()
-    path = Path(path)
     done = prepare_store(path, spec, chunk_function)
     todo = [key for key in spec.chunks() if key not in done]
     skipped = tuple(key for key in spec.chunks() if key in done)

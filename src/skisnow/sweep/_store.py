@@ -32,7 +32,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from skisnow._errors import FileFormatError, InputError
+from skisnow._errors import FileFormatError, InputError, SkisnowError
 from skisnow.sweep._grid import SweepSpec
 
 if TYPE_CHECKING:  # xarray is imported lazily: the store functions pay for it, not the package
@@ -136,12 +136,112 @@ def _encoding() -> dict[str, dict[str, Any]]:
     return enc
 
 
+#: Prefix of the temporary sibling a store is created in (``.NAME.creating-PID-RAND``).
+CREATING_TAG = "creating"
+
+
+def lock_path(path: Path) -> Path:
+    """The lock file of a store: a hidden sibling ``.NAME.lock`` (it must exist before the
+    store does, so it cannot live inside it)."""
+    return path.with_name(f".{path.name}.lock")
+
+
+class StoreLock:
+    """An exclusive, advisory lock on a sweep store (``fcntl.flock`` on :func:`lock_path`).
+
+    A second sweep on the same store is refused at once with a message naming the process that
+    holds it, instead of racing on the chunk files. The kernel releases the lock when its
+    process ends, however it ends (a SIGKILLed sweep never leaves a stale lock). Standard
+    library rather than the ``filelock`` package: POSIX ``flock`` is all skisnow needs (on
+    platforms without ``fcntl`` the lock is skipped).
+    """
+
+    def __init__(self, path: str | Path) -> None:
+        self.path = Path(path)
+        self._fd: int | None = None
+
+    def __enter__(self) -> StoreLock:
+        import os
+
+        try:
+            import fcntl
+        except ImportError:  # pragma: no cover - Windows: no advisory lock
+            return self
+        lock = lock_path(self.path)
+        lock.parent.mkdir(parents=True, exist_ok=True)
+        fd = os.open(str(lock), os.O_RDWR | os.O_CREAT, 0o644)
+        try:
+            fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            holder = os.pread(fd, 64, 0).decode("ascii", "replace").strip() or "?"
+            os.close(fd)
+            raise SkisnowError(
+                f"{self.path} is being written by another skisnow sweep (process {holder}); "
+                "wait for it to finish (then run the same command to complete or reuse the "
+                "store), or choose another --out"
+            ) from None
+        os.ftruncate(fd, 0)
+        os.pwrite(fd, str(os.getpid()).encode("ascii"), 0)
+        self._fd = fd
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        import os
+
+        if self._fd is not None:
+            os.close(self._fd)  # releases the flock
+            self._fd = None
+
+
 def create_store(path: Path, spec: SweepSpec, *, attrs: Mapping[str, Any]) -> None:
-    """Create the store: metadata and coordinates only (``to_zarr(compute=False)``)."""
+    """Create the store atomically: metadata and coordinates (``to_zarr(compute=False)``) are
+    written into a temporary sibling directory, which is renamed onto ``path`` only when the
+    skeleton is complete. So ``path`` exists only as a complete, resumable store; a process
+    killed during creation leaves a ``.NAME.creating-*`` sibling that the next run (holding the
+    lock) removes. Call it with the store's :class:`StoreLock` held."""
+    import os
+    import shutil
+
+    from skisnow._atomic import fsync_dir, temporary_sibling
+
+    for stale in path.parent.glob(f".{path.name}.{CREATING_TAG}-*"):
+        shutil.rmtree(stale, ignore_errors=True)  # left by a killed creation (we hold the lock)
+    tmp = temporary_sibling(path, tag=CREATING_TAG)
     ds = template(spec, attrs=attrs)
     ds.to_zarr(
-        path, mode="w-", compute=False, encoding=_encoding(), consolidated=False, zarr_format=2
+        tmp, mode="w-", compute=False, encoding=_encoding(), consolidated=False, zarr_format=2
     )
+    os.rename(tmp, path)  # atomic; fails if something appeared at path meanwhile
+    fsync_dir(path.parent)
+
+
+def check_skeleton(path: Path, spec: SweepSpec) -> None:
+    """Raise :class:`FileFormatError` unless every array of the sweep is in the store with the
+    shape of ``spec`` (a store half-created by an older skisnow, or damaged by hand)."""
+    import zarr
+
+    sizes = {
+        "ski": len(spec.skis),
+        "mass_kg": len(spec.masses),
+        "load_position_mm": len(spec.load_positions),
+        "snow_modulus_mpa": len(spec.snow_moduli),
+        "zone": len(spec.zones),
+    }
+    group = zarr.open_group(str(path), mode="r")
+    want = {name: var.dims for name, var in VARIABLES.items()} | {"chunk_done": CHUNK_DIMS}
+    want |= {d: (d,) for d in DIMS}
+    for name, dims in want.items():
+        shape = tuple(sizes[d] for d in dims)
+        try:
+            got = group[name].shape
+        except Exception:
+            got = None
+        if got != shape:
+            raise FileFormatError(
+                f"{path}: incomplete or damaged sweep store (array {name!r} is "
+                f"{'missing' if got is None else f'of shape {got}'}, expected {shape}); delete "
+                "it and run the sweep again, or choose another --out"
+            )
 
 
 def read_spec(path: Path) -> SweepSpec:
@@ -274,9 +374,13 @@ def save_netcdf(ds: xr.Dataset, path: str | Path) -> Path:
     """
     import importlib.util
 
+    from skisnow._atomic import atomic_path
+
     path = Path(path)
     for engine, module in (("netcdf4", "netCDF4"), ("h5netcdf", "h5netcdf"), ("scipy", "scipy")):
         if importlib.util.find_spec(module) is not None:
-            ds.to_netcdf(path, engine=engine)
+            # written whole or not at all: a killed export never leaves a .nc full of garbage
+            with atomic_path(path) as tmp:
+                ds.to_netcdf(tmp, engine=engine)
             return path
     raise InputError("no NetCDF engine is installed (netCDF4, h5netcdf or scipy); use Zarr")

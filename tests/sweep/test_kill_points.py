@@ -1,0 +1,119 @@
+"""Resuming after a kill at ANY write yields the store of an uninterrupted run.
+
+A hook in the writer (zarr's LocalStore, the only thing that writes a sweep store's files) stops
+the sweep right after its k-th file write, as a SIGKILL would (no clean-up runs), for every k of
+a small two-chunk sweep, including every write of the store's creation; the same sweep is then
+run again. Every kill point must end with the dataset of an uninterrupted run, and no finished
+chunk may be recomputed. A second sweep on a locked store is refused; a NetCDF export killed
+midway leaves no file.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+import xarray as xr
+import zarr.storage
+
+from skisnow import SkisnowError
+from skisnow.sweep import SweepSpec, open_sweep, run_sweep, save_netcdf
+from skisnow.sweep._store import VARIABLES, StoreLock
+
+
+class Killed(Exception):
+    """Stands for SIGKILL: raised right after a write, nothing of the sweep's own runs after."""
+
+
+def _chunk(spec: SweepSpec, ski: str, position: float, modulus: float) -> dict[str, np.ndarray]:
+    """A cheap deterministic chunk (the store, not the physics, is under test here)."""
+    n_mass, n_zone = len(spec.masses), len(spec.zones)
+    base = np.outer(np.asarray(spec.masses), np.arange(1, n_zone + 1)) * (modulus / 1e8)
+    out: dict[str, np.ndarray] = {}
+    for name, var in VARIABLES.items():
+        shape = (n_mass, n_zone) if "zone" in var.dims else (n_mass,)
+        value = base if "zone" in var.dims else base[:, 0] + position
+        out[name] = np.asarray(value, dtype=float).reshape(shape).astype(var.dtype)
+    return out
+
+
+SPEC = SweepSpec(
+    skis=("skate",), masses=(20.0, 60.0), load_positions=(-0.12,), snow_moduli=(50e6, 100e6),
+    n_points=64, profile_source="beam",
+)  # fmt: skip
+
+
+@pytest.fixture
+def kill_after(monkeypatch):
+    """``kill_after(k)`` arms the hook: the k-th file write of the store completes, then
+    :class:`Killed` is raised; returns a counter dict whose ``"n"`` counts writes."""
+    original = zarr.storage.LocalStore._set
+    state = {"n": 0, "k": None}
+
+    async def _set(self, key, value, exclusive=False):
+        await original(self, key, value, exclusive=exclusive)
+        state["n"] += 1
+        if state["k"] is not None and state["n"] == state["k"]:
+            raise Killed(f"killed after write {state['n']} ({key})")
+
+    monkeypatch.setattr(zarr.storage.LocalStore, "_set", _set)
+
+    def arm(k: int | None) -> dict:
+        state.update(n=0, k=k)
+        return state
+
+    return arm
+
+
+@pytest.mark.slow
+def test_every_kill_point_resumes_to_the_uninterrupted_store(tmp_path, kill_after) -> None:
+    reference = tmp_path / "reference.zarr"
+    count = kill_after(None)
+    run_sweep(SPEC, reference, chunk_function=_chunk, workers=0)
+    n_writes = count["n"]
+    expected = open_sweep(reference)
+    assert n_writes > 20  # creation (metadata, coordinates) and two chunks of 12 arrays
+    for k in range(1, n_writes + 1):
+        store = tmp_path / f"k{k}.zarr"
+        kill_after(k)
+        with pytest.raises(Killed):
+            run_sweep(SPEC, store, chunk_function=_chunk, workers=0)
+        kill_after(None)
+        before = set()
+        if store.exists():  # the skeleton is complete, or the store does not exist at all
+            from skisnow.sweep._store import done_chunks
+
+            before = done_chunks(store, SPEC)
+        run = run_sweep(SPEC, store, chunk_function=_chunk, workers=0)
+        assert set(run.computed).isdisjoint(before), f"kill point {k}: a chunk was recomputed"
+        xr.testing.assert_identical(open_sweep(store), expected)
+        assert not list(tmp_path.glob(f".k{k}.zarr.creating-*")), "a temporary store was left"
+    print(f"{n_writes} kill points, all resumed to the uninterrupted store")
+
+
+def test_a_second_sweep_on_a_locked_store_is_refused(tmp_path) -> None:
+    store = tmp_path / "busy.zarr"
+    with StoreLock(store), pytest.raises(SkisnowError, match="another skisnow sweep"):
+        run_sweep(SPEC, store, chunk_function=_chunk, workers=0)
+    assert not store.exists()
+    run_sweep(SPEC, store, chunk_function=_chunk, workers=0)  # the lock is gone with its holder
+
+
+def test_a_killed_netcdf_export_leaves_no_file(tmp_path, monkeypatch) -> None:
+    store = tmp_path / "s.zarr"
+    run_sweep(SPEC, store, chunk_function=_chunk, workers=0)
+    ds = open_sweep(store)
+    target = tmp_path / "s.nc"
+
+    def dies(self, path, **kwargs):
+        with open(path, "wb") as fh:
+            fh.write(b"CDF\x01 half of a file")
+        raise Killed("killed mid-export")
+
+    monkeypatch.setattr(xr.Dataset, "to_netcdf", dies)
+    with pytest.raises(Killed):
+        save_netcdf(ds, target)
+    assert sorted(p.name for p in tmp_path.iterdir() if p.suffix == ".nc") == []
+    monkeypatch.undo()
+    save_netcdf(ds, target)
+    with xr.open_dataset(target) as back:
+        np.testing.assert_array_equal(back["length_mm"].values, ds["length_mm"].values)
