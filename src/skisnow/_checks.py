@@ -292,12 +292,14 @@ def check_array(
     row_label: Callable[[int], str] | None = None,
     allow: bool | None = None,
     check_span: bool = True,
+    impossible: type[InputError] = InputError,
 ) -> np.ndarray:
     """Check a column of values in the field unit of ``quantity`` (see :func:`check_value`).
 
     The first offending entry is named with ``row_label(i)`` (e.g. ``"line 12"``). With
     ``check_span`` a column whose spread is below the quantity's ``min_span`` is refused as a
-    probable unit slip (heights in metres in a millimetre column).
+    probable unit slip (heights in metres in a millimetre column). ``impossible`` is the error
+    raised for impossible values (readers pass :class:`~skisnow.FileFormatError`).
     """
     q = QUANTITIES[quantity] if isinstance(quantity, str) else quantity
     v = np.asarray(values, dtype=np.float64)
@@ -305,7 +307,7 @@ def check_array(
     bad = np.flatnonzero(~q.possible(v))
     if bad.size:
         i = int(bad[0])
-        raise InputError(
+        raise impossible(
             f"{where}, {label(i)}: {_fmt(v[i])} {q.unit} is not a possible {q.name}; need "
             f"{q.describe_possible()}"
         )

@@ -102,7 +102,7 @@ def test_range_syntax(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> Non
 def test_errors_are_one_line(
     argv: list[str], needle: str, capsys: pytest.CaptureFixture[str]
 ) -> None:
-    assert main(argv) == 1
+    assert main(argv) == 2
     captured = capsys.readouterr()
     assert captured.out == ""
     lines = captured.err.strip().splitlines()

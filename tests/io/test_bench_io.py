@@ -8,7 +8,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from skisnow import FileFormatError, InputError
+from skisnow import FileFormatError, InputError, allow_implausible
 from skisnow.io import MIN_PROFILE_POINTS, BenchData, read_bench, write_bench
 from skisnow.ski import run_bench, ski_metrics
 
@@ -30,14 +30,14 @@ def test_round_trip_is_exact_and_metrics_equal(
 
 
 def _small_table(n: int = MIN_PROFILE_POINTS) -> pd.DataFrame:
-    x = np.arange(n, dtype=float)
+    x = np.arange(n, dtype=float) * 100.0 - 450.0  # a plausible ski: 900 mm of it
     return pd.DataFrame(
         {
             "ski": ["s"] * (2 * n),
             "mass_kg": [10.0] * n + [20.0] * n,
             "load_position_mm": [-80.0] * (2 * n),
             "x_mm": np.concatenate([x, x]),
-            "height_mm": np.linspace(0.0, 1.0, 2 * n),
+            "height_mm": np.linspace(2.0, 0.0, 2 * n),  # the heavier load sits lower
         }
     )
 
@@ -85,7 +85,7 @@ def test_nan_inf_and_text(tmp_path: Path) -> None:
 def test_negative_mass(tmp_path: Path) -> None:
     t = _small_table()
     t.loc[MIN_PROFILE_POINTS:, "mass_kg"] = -20.0
-    _expect(_write_csv(tmp_path, t), f"line {MIN_PROFILE_POINTS + 3}", "'mass_kg'", "not > 0")
+    _expect(_write_csv(tmp_path, t), f"line {MIN_PROFILE_POINTS + 3}", "'mass_kg'", "> 0 kg")
 
 
 def test_duplicated_sample(tmp_path: Path) -> None:
@@ -155,7 +155,9 @@ def _bilinear_bench() -> BenchData:
         for p in (-80.0, 0.0)
         for xi in x
     ]
-    return BenchData(pd.DataFrame(rows), {"ski": "a", "kick_zone_mm": [-200.0, 300.0]})
+    # a mathematical bench (negative heights, 200 mm long): accepted as implausible on purpose
+    with allow_implausible():
+        return BenchData(pd.DataFrame(rows), {"ski": "a", "kick_zone_mm": [-200.0, 300.0]})
 
 
 def test_bench_queries_interpolate_exactly_on_a_bilinear_bench() -> None:

@@ -134,12 +134,10 @@ def contact(
     check_grid_points(points * n_across if model == "surface" else points, where="--n-across")
     if model not in MODELS:
         raise InputError(f"--model must be one of {', '.join(MODELS)}, got {model!r}")
-    if profile_source not in PROFILE_SOURCES:
+    if ski is not None and profile_source not in PROFILE_SOURCES:
         raise InputError(
             f"--profile-source must be one of {', '.join(PROFILE_SOURCES)}, got {profile_source!r}"
         )
-    if points < 16:
-        raise InputError(f"--points must be at least 16, got {points}")
     case = solve_case(
         ski,
         mass=mass_kg,

@@ -117,6 +117,7 @@ def validate_bench_table(
                 "is NaN, inf or empty; every value must be a finite number"
             )
         out[col] = values
+    _check_plausible(out, where, lambda i: _row_label(i, row_offset, csv))
     ski_blank = out["ski"].str.strip() == ""
     if ski_blank.any():
         i = int(np.flatnonzero(ski_blank.to_numpy())[0])
@@ -162,7 +163,82 @@ def validate_bench_table(
                 f"mm does not increase within the profile (ski={ski}, mass_kg={m}, "
                 f"load_position_mm={p}); samples of a profile must be ordered by x"
             )
+    _check_load_order(out, groups, where, lambda i: _row_label(i, row_offset, csv))
     return out
+
+
+#: Quantity (skisnow._checks) of each numeric bench column.
+_QUANTITY = {"mass_kg": "mass", "load_position_mm": "load_position", "x_mm": "x",
+             "height_mm": "camber_height"}  # fmt: skip
+
+
+def _check_plausible(out: pd.DataFrame, where: str, label: Any) -> None:
+    """Every column within what is possible and plausible for a ski on a camber bench (heights
+    in metres in ``height_mm``, x in metres, a 20 m ski, masses in grams are refused with the
+    unit probably meant; ``--allow-implausible`` accepts them)."""
+    from skisnow._checks import check_array, implausible_allowed
+
+    for col, quantity in _QUANTITY.items():
+        check_array(
+            out[col].to_numpy(),
+            quantity,
+            where=f"{where}, column {col!r}",
+            row_label=label,
+            impossible=FileFormatError,
+        )
+    if implausible_allowed():
+        return
+    from skisnow._errors import ImplausibleValueError
+
+    for ski, idx in out.groupby("ski", sort=False).indices.items():
+        x = out["x_mm"].to_numpy()[idx]
+        if x.max() - x.min() > 3000.0:
+            raise ImplausibleValueError(
+                f"{where}, column 'x_mm': ski {ski!r} spans {x.max() - x.min():.6g} mm; a "
+                "cross-country ski is 1.0 to 2.6 m long (was x given in another unit?). If you "
+                "really mean it, pass --allow-implausible."
+            )
+
+
+#: Tolerance [mm] of the load-order check: a heavier load may sit this much higher on average
+#: (measurement noise) before the bench is refused.
+LOAD_ORDER_TOLERANCE_MM = 0.05
+
+
+def _check_load_order(out: pd.DataFrame, groups: dict, where: str, label: Any) -> None:
+    """A heavier load presses the ski down under the load: at one load position x_m, the camber
+    height AT x_m must not grow with the mass (beyond :data:`LOAD_ORDER_TOLERANCE_MM`). The
+    displacement under a point force is monotone in the force for an elastic beam on a rigid
+    plane, contact included (it is the work-conjugate of a convex energy); elsewhere the ski
+    may rise (tips lift as the middle bends), so only x_m is tested. A bench that rises under
+    its load has swapped masses or heights of another sign."""
+    from skisnow._checks import implausible_allowed
+    from skisnow._errors import ImplausibleValueError
+
+    if implausible_allowed():
+        return
+    x_all, h_all = out["x_mm"].to_numpy(), out["height_mm"].to_numpy()
+    by_pos: dict[tuple[str, float], list[tuple[float, np.ndarray]]] = {}
+    for (ski, m, p), idx in groups.items():
+        by_pos.setdefault((ski, p), []).append((m, np.sort(idx)))
+    for (ski, p), profiles in by_pos.items():
+        profiles.sort(key=lambda t: t[0])
+        inside = all(x_all[i].min() <= p <= x_all[i].max() for _, i in profiles)
+        if len(profiles) < 2 or not inside:
+            continue
+        means = [float(np.interp(p, x_all[i], h_all[i])) for _, i in profiles]
+        for k in range(1, len(profiles)):
+            rise = means[k] - means[k - 1]
+            if rise > LOAD_ORDER_TOLERANCE_MM:
+                (m0, i0), (m1, i1) = profiles[k - 1], profiles[k]
+                raise ImplausibleValueError(
+                    f"{where}: the profile at mass_kg={m1:g} (from {label(int(i1[0]))}) sits "
+                    f"{rise:.3g} mm higher under the load than the lighter one at mass_kg={m0:g} "
+                    f"(from {label(int(i0[0]))}), ski {ski!r}, load_position_mm={p:g}; a heavier "
+                    "load presses the ski down. Are the masses swapped, or the heights of the "
+                    "wrong sign (column 'height_mm')? If you really mean it, pass "
+                    "--allow-implausible."
+                )
 
 
 @dataclass(frozen=True, eq=False)
@@ -364,7 +440,9 @@ def write_bench(data: BenchData, path: str | Path) -> Path:
             f"{_META_TAG} {meta}",
         ]
         body = data.table.to_csv(index=False, float_format="%.17g", lineterminator="\n")
-        path.write_text("\n".join(lines) + "\n" + body, encoding="utf-8")
+        from skisnow._atomic import atomic_write
+
+        atomic_write(path, "\n".join(lines) + "\n" + body)
     else:
         import pyarrow as pa
         import pyarrow.parquet as pq
@@ -372,7 +450,10 @@ def write_bench(data: BenchData, path: str | Path) -> Path:
         tbl = pa.Table.from_pandas(data.table, preserve_index=False)
         md = dict(tbl.schema.metadata or {})
         md[_PARQUET_KEY] = meta.encode("utf-8")
-        pq.write_table(tbl.replace_schema_metadata(md), path)
+        from skisnow._atomic import atomic_path
+
+        with atomic_path(path) as tmp:
+            pq.write_table(tbl.replace_schema_metadata(md), tmp)
     return path
 
 

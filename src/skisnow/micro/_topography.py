@@ -172,35 +172,166 @@ def read_topography(
     if not path.is_file():
         raise FileFormatError(f"{name}: no such file")
     suffix = path.suffix.lower()
+    if height_unit not in _UNIT_TO_M:
+        raise InputError(
+            f"{name}: height unit {height_unit!r} unknown (CLI: --height-unit); valid: "
+            f"{', '.join(sorted(_UNIT_TO_M))}"
+        )
+    if suffix == ".npz":
+        return _read_npz(path)
     if suffix == ".npy" or (suffix in _TEXT_SUFFIXES and pixel_size is not None):
-        if pixel_size is None:
-            raise InputError(
-                f"{name}: a .npy array carries no pixel size; give pixel_size (CLI: --pixel-um)"
+        if _is_zip(path):
+            raise FileFormatError(
+                f"{name}: this is a .npz archive (zip), not a .npy array; rename it to .npz "
+                "(skisnow reads the 'heights', 'dx_m', 'dy_m' of its own .npz files)"
             )
-        if height_unit not in _UNIT_TO_M:
-            raise InputError(f"height_unit {height_unit!r} unknown; valid: {sorted(_UNIT_TO_M)}")
+        sidecar = _read_sidecar(path) if pixel_size is None else None
+        if pixel_size is None and sidecar is None:
+            raise InputError(
+                f"{name}: a {suffix} matrix carries no pixel size and has no {_sidecar(path).name} "
+                "beside it; give the pixel size (CLI: --pixel-um)"
+            )
+        if sidecar is not None:
+            pixel_size, height_unit = (sidecar[0], sidecar[1]), "m"
         try:
             arr = np.load(path, allow_pickle=False) if suffix == ".npy" else _load_text(path)
         except FileFormatError:
             raise
         except (ValueError, EOFError, OSError) as exc:  # what numpy raises for bad files
-            raise FileFormatError(f"{name}: cannot read as {suffix} matrix ({exc})") from exc
-        if arr.ndim != 2 or not np.issubdtype(arr.dtype, np.number):
-            raise FileFormatError(f"{name}: expected a 2-D numeric matrix, got {arr.shape}")
+            why = (
+                "holds Python objects (pickle), which skisnow never loads"
+                if ("allow_pickle" in str(exc))
+                else f"truncated or not a {suffix} matrix ({exc})"
+            )
+            raise FileFormatError(f"{name}: cannot read: {why}") from None
+        if arr.ndim != 2 or not (
+            np.issubdtype(arr.dtype, np.floating) or np.issubdtype(arr.dtype, np.integer)
+        ):
+            raise FileFormatError(
+                f"{name}: expected a 2-D matrix of real heights, got shape {arr.shape} of "
+                f"{arr.dtype}"
+            )
         dx, dy = _pixel_pair(pixel_size)
-        return make_topography(arr * _UNIT_TO_M[height_unit], dx=dx, dy=dy, source=name)
+        heights = arr.astype(np.float64) * _UNIT_TO_M[height_unit]
+        _check_heights(heights, name, height_unit)
+        return make_topography(heights, dx=dx, dy=dy, source=name)
+    if suffix in _TEXT_SUFFIXES:
+        header = _text_header_pixel(path)
+        if header is not None:
+            heights = _load_text(path)
+            _check_heights(heights, name, "m")
+            return make_topography(heights, dx=header[0], dy=header[1], source=name)
     return _read_with_surface_topography(path, channel=channel)
 
 
+def _is_zip(path: Path) -> bool:
+    with open(path, "rb") as fh:
+        return fh.read(4) == b"PK\x03\x04"
+
+
+def _sidecar(path: Path) -> Path:
+    """The pixel-size sidecar of a ``.npy``/text matrix: ``NAME.npy.json``."""
+    return path.with_name(path.name + ".json")
+
+
+def _read_sidecar(path: Path) -> tuple[float, float] | None:
+    import json
+
+    side = _sidecar(path)
+    if not side.is_file():
+        return None
+    try:
+        doc = json.loads(side.read_text(encoding="utf-8"))
+        dx, dy = float(doc["dx_m"]), float(doc["dy_m"])
+        if doc.get("height_unit", "m") != "m":
+            raise ValueError("height_unit must be 'm'")
+    except (OSError, ValueError, KeyError, TypeError) as exc:
+        raise FileFormatError(
+            f"{side}: not a skisnow topography sidecar (need a JSON object with dx_m, dy_m in "
+            f"metres; {exc})"
+        ) from None
+    return dx, dy
+
+
+def _text_header_pixel(path: Path) -> tuple[float, float] | None:
+    """The pixel size from the header line :func:`write_topography` puts in text matrices."""
+    import re
+
+    try:
+        with open(path, encoding="utf-8", errors="replace") as fh:
+            first = fh.readline()
+    except OSError:
+        return None
+    m = re.search(r"skisnow topography.*dx=([^ ]+) m, dy=([^ ]+) m", first)
+    return (float(m.group(1)), float(m.group(2))) if m else None
+
+
+def _read_npz(path: Path) -> Topography:
+    name = str(path)
+    try:
+        with np.load(path, allow_pickle=False) as f:
+            heights = np.asarray(f["heights"], dtype=np.float64)
+            dx, dy = float(f["dx_m"]), float(f["dy_m"])
+    except KeyError as exc:
+        raise FileFormatError(
+            f"{name}: a skisnow .npz topography holds 'heights' [m], 'dx_m' and 'dy_m' "
+            f"({exc} is missing)"
+        ) from None
+    except (ValueError, EOFError, OSError, TypeError) as exc:
+        raise FileFormatError(f"{name}: not a readable .npz topography ({exc})") from None
+    _check_heights(heights, name, "m")
+    return make_topography(heights, dx=dx, dy=dy, source=name)
+
+
+def _check_heights(heights: np.ndarray, name: str, unit: str) -> None:
+    """A ski base's topography spans micrometres: a peak-to-valley beyond the plausible range
+    means the heights were not in ``unit`` (e.g. integer counts or nanometres read as metres)."""
+    from skisnow._checks import check_value
+
+    finite = heights[np.isfinite(heights)]
+    if finite.size:
+        check_value(
+            float(finite.max() - finite.min()),
+            "topography_height",
+            where=f"{name}: peak-to-valley height read with --height-unit {unit}",
+        )
+
+
 def _load_text(path: Path) -> np.ndarray:
-    with open(path, encoding="utf-8", errors="strict") as fh:
-        first = ""
-        for line in fh:
-            if line.strip() and not line.lstrip().startswith("#"):
-                first = line
-                break
-    delimiter = "," if "," in first else None
-    return np.loadtxt(path, delimiter=delimiter, comments="#", ndmin=2)
+    """A text matrix (``#`` comments; comma- or blank-separated), read line by line so that a bad
+    cell is reported as the user counts: file line and column. (``np.loadtxt`` counts data rows
+    only, and from 0.)"""
+    try:
+        lines = path.read_text(encoding="utf-8").splitlines()
+    except UnicodeDecodeError as exc:
+        raise FileFormatError(f"{path}: not a text matrix (not UTF-8: {exc})") from None
+    rows: list[list[float]] = []
+    width_line = 0
+    for no, line in enumerate(lines, start=1):
+        text = line.split("#", 1)[0].strip()
+        if not text:
+            continue
+        cells = text.split(",") if "," in text else text.split()
+        row = []
+        for col, cell in enumerate(cells, start=1):
+            try:
+                row.append(float(cell))
+            except ValueError:
+                raise FileFormatError(
+                    f"{path}: line {no}, column {col}: {cell.strip()!r} is not a number (a "
+                    "text matrix holds one row of heights per line)"
+                ) from None
+        if rows and len(row) != len(rows[0]):
+            raise FileFormatError(
+                f"{path}: line {no} has {len(row)} values, line {width_line} has "
+                f"{len(rows[0])}; every row of a matrix needs the same number"
+            )
+        if not rows:
+            width_line = no
+        rows.append(row)
+    if not rows:
+        raise FileFormatError(f"{path}: no numbers (an empty text matrix)")
+    return np.array(rows, dtype=np.float64)
 
 
 def _read_with_surface_topography(path: Path, *, channel: int) -> Topography:
@@ -232,8 +363,13 @@ def _read_with_surface_topography(path: Path, *, channel: int) -> Topography:
     except FileFormatError:
         raise
     except ReadFileError as exc:
-        first = str(exc).strip().splitlines()[0] if str(exc).strip() else type(exc).__name__
-        raise FileFormatError(f"{name}: unknown or unreadable topography format ({first})") from exc
+        first = str(exc).strip().splitlines()[0].strip() if str(exc).strip() else ""
+        detail = f" ({first})" if first and not first.endswith(":") else ""  # not "tried X: "
+        raise FileFormatError(
+            f"{name}: unknown, truncated or corrupt topography file: no reader accepts it"
+            f"{detail}. Readable: instrument files SurfaceTopography knows (.x3p, .opd, .plu, "
+            ".sur, .al3d, .datx, ...), skisnow's .npz, or a .npy/text matrix with --pixel-um"
+        ) from None
     except _VENDOR_READ_ERRORS as exc:  # corrupt or truncated files fail deep in the readers
         raise FileFormatError(
             f"{name}: corrupt or truncated topography file ({type(exc).__name__}: {exc})"
@@ -248,20 +384,33 @@ def write_topography(topo: Topography, path: str | Path) -> Path:
     back needs the pixel size). Returns the path."""
     path = Path(path)
     suffix = path.suffix.lower()
-    if suffix == ".x3p":
-        st = to_surface_topography(fill_missing(topo) if topo.n_missing else topo)
-        st.to_x3p(str(path))
-    elif suffix == ".npy":
-        np.save(path, np.asarray(topo.heights))
-    elif suffix in {".txt", ".csv"}:
-        np.savetxt(
-            path,
-            topo.heights,
-            delimiter="," if suffix == ".csv" else " ",
-            header=f"skisnow topography, heights in m, dx={topo.dx!r} m, dy={topo.dy!r} m",
+    import json
+
+    from skisnow._atomic import atomic_path, atomic_write
+
+    if suffix not in {".x3p", ".npy", ".npz", ".txt", ".csv"}:
+        raise InputError(
+            f"{path}: output format {suffix!r} unknown; valid: .x3p, .npy, .npz, .txt, .csv"
         )
-    else:
-        raise InputError(f"{path}: output format {suffix!r} unknown; valid: .x3p, .npy, .txt, .csv")
+    with atomic_path(path) as tmp:
+        if suffix == ".x3p":
+            st = to_surface_topography(fill_missing(topo) if topo.n_missing else topo)
+            st.to_x3p(str(tmp))
+        elif suffix == ".npy":
+            np.save(tmp, np.asarray(topo.heights))
+        elif suffix == ".npz":
+            np.savez(tmp, heights=np.asarray(topo.heights), dx_m=topo.dx, dy_m=topo.dy)
+        else:
+            np.savetxt(
+                tmp,
+                topo.heights,
+                delimiter="," if suffix == ".csv" else " ",
+                header=f"skisnow topography, heights in m, dx={topo.dx!r} m, dy={topo.dy!r} m",
+            )
+    if suffix == ".npy":  # a bare array: its pixel size goes beside it
+        doc = {"format": "skisnow-topography", "dx_m": topo.dx, "dy_m": topo.dy,
+               "height_unit": "m"}  # fmt: skip
+        atomic_write(_sidecar(path), json.dumps(doc) + "\n")
     return path
 
 
