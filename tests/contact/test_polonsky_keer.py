@@ -179,3 +179,22 @@ def test_status_of_a_nonfinite_operator() -> None:
     res = polonsky_keer(bad, h, p0=np.ones(32), control="displacement", target=target)
     assert isinstance(res, PolonskyKeerResult)
     assert res.status is SolverStatus.NONFINITE and not res.converged
+
+
+def test_cell_operator_on_a_footprint_is_the_restriction() -> None:
+    # K on a subset of a 2D grid's cells (a ski's outline) is the rows and columns of K on the
+    # whole grid; its direct columns agree with its products
+    conv = surface_convolution((12, 6), 1e-3, 2e-3, modulus=1e8)
+    cells = np.flatnonzero((np.add.outer(np.arange(12), np.arange(6)) % 3 != 0).ravel())
+    op = CellOperator(conv, cells)
+    v = np.random.default_rng(3).random(cells.size)
+    grid = np.zeros(72)
+    grid[cells] = v
+    np.testing.assert_allclose(op(v), conv(grid.reshape(12, 6)).ravel()[cells], rtol=1e-12)
+    some = np.array([0, 5, cells.size - 1])
+    out = np.zeros(cells.size)
+    op.add_columns(out, some, v[some])
+    w = np.zeros(cells.size)
+    w[some] = v[some]
+    np.testing.assert_allclose(out, op(w), rtol=1e-9, atol=1e-12 * np.abs(out).max())
+    assert op.self_influence == conv.self_influence
