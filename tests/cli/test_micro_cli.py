@@ -85,7 +85,7 @@ def test_human_output_and_rank(capsys, tmp_path: Path) -> None:
     corr = {c["descriptor"]: c for c in doc["correlations"]}
     assert corr["A_fr"]["significant"] and not corr["Sa_um"]["significant"]
     assert doc["critical_r"] == pytest.approx(0.878, abs=1e-3)
-    assert main(["rank", "--seed-tables"]) == 0
+    assert main(["rank", "--paper-tables"]) == 0
     out = capsys.readouterr().out
     assert "Table 4" in out and "Sdq" in out
 

@@ -62,7 +62,7 @@ def test_outside_the_trained_domain_is_4_and_listed(capsys) -> None:
     assert doc["skisnow_version"] == __version__ and "converged" in doc
 
 
-@pytest.mark.parametrize("args", [["skis", "--json"], ["rank", "--seed-tables", "--json"]])
+@pytest.mark.parametrize("args", [["skis", "--json"], ["rank", "--paper-tables", "--json"]])
 def test_every_json_document_is_annotated(capsys, args) -> None:
     assert main(args) == 0
     doc = json.loads(capsys.readouterr().out)

@@ -7,7 +7,7 @@ import pytest
 
 from skisnow._errors import InputError
 from skisnow.micro import (
-    SEED_GRAIN_FIT,
+    PAPER_GRAIN_FIT,
     critical_r,
     fit_grain_distribution,
     grain_average,
@@ -16,14 +16,14 @@ from skisnow.micro import (
     rank_table,
     sample_grain_diameters,
     scherge2021,
-    seed_table4_comparison,
+    table4_comparison,
 )
 
 
 def test_seed_fit_reading() -> None:
     # mode b/c inside the 500–750 µm the seed observed; printed f peaks near 1
-    assert SEED_GRAIN_FIT.mode == pytest.approx(624.9e-6, rel=1e-3)
-    assert SEED_GRAIN_FIT(SEED_GRAIN_FIT.mode) == pytest.approx(0.974, rel=1e-2)
+    assert PAPER_GRAIN_FIT.mode == pytest.approx(624.9e-6, rel=1e-3)
+    assert PAPER_GRAIN_FIT(PAPER_GRAIN_FIT.mode) == pytest.approx(0.974, rel=1e-2)
 
 
 def test_fit_round_trip() -> None:
@@ -31,7 +31,7 @@ def test_fit_round_trip() -> None:
 
     Tolerance 5 %: the sampling noise of the mean/variance with 20 000 samples is ~1 %, and
     b, c of a gamma law are ~(mean/σ)², so their error is a few times larger."""
-    truth = SEED_GRAIN_FIT
+    truth = PAPER_GRAIN_FIT
     d = sample_grain_diameters(truth, 20_000, seed=7)
     counts, edges = np.histogram(d, bins=40)
     centres = 0.5 * (edges[1:] + edges[:-1])
@@ -48,7 +48,7 @@ def test_grain_average_is_a_weighted_mean() -> None:
     d = np.linspace(450e-6, 750e-6, 31)
     assert grain_average(d, np.full(d.size, 0.3)) == pytest.approx(0.3, rel=1e-12)
     # a linear A_fr(D) averages to its value at the f-weighted mean diameter
-    w = SEED_GRAIN_FIT(d)
+    w = PAPER_GRAIN_FIT(d)
     mean_d = np.trapezoid(w * d, d) / np.trapezoid(w, d)
     assert grain_average(d, 2.0 * d) == pytest.approx(2.0 * mean_d, rel=1e-12)
     assert 600e-6 < mean_d < 650e-6
@@ -91,7 +91,7 @@ def test_table4_recomputed_r_against_published() -> None:
     """Honest comparison: r recomputed from Table 3 is 0.05–0.13 smaller in magnitude than
     Table 4 prints, with the same signs, and none is significant (|r| < 0.878), which is the
     seed's conclusion. The rows are independent of scipy: np.corrcoef gives the same r."""
-    rows = {r["parameter"]: r for r in seed_table4_comparison()}
+    rows = {r["parameter"]: r for r in table4_comparison()}
     names = scherge2021.STRUCTURES
     t = [scherge2021.TABLE3_AVERAGE_S[s] for s in names]
     for param, values in scherge2021.TABLE4.items():

@@ -1,4 +1,5 @@
-"""The block network itself: wiring of paper 000's Figure 3, shapes, scaling, domain guard."""
+"""The block network itself: wiring of Figure 3 of Kalliorinne et al. (2023), shapes, scaling,
+domain guard."""
 
 from __future__ import annotations
 

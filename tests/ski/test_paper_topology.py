@@ -1,4 +1,5 @@
-"""The shipped skis reproduce the contact TOPOLOGY of seed paper 000's real skis (Figs. 5 and 6).
+"""The shipped skis reproduce the contact TOPOLOGY of the real skis of Kalliorinne et al. (2023),
+Figs. 5 and 6.
 
 The skis were calibrated on the paper's contact numbers (benchmarks/calibrate_skis.py); these
 tests check what does not depend on the fit's exact numbers: which zones carry load and how many

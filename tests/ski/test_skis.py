@@ -51,7 +51,8 @@ def test_classic_wax_pocket_open_at_half_and_closed_at_full_weight() -> None:
 
 
 def test_classic_collapses_when_the_load_moves_forward() -> None:
-    # Seed paper 000, Fig. 6: 60 kg at -70 mm collapses the camber, at -210 mm it does not. On
+    # Kalliorinne et al. 2023, Fig. 6: 60 kg at -70 mm collapses the camber, at -210 mm it does
+    # not. On
     # the bench (rigid plane) the collapsed pocket is closed (< 0.1 mm, the practitioners'
     # criterion) and the ski stands on its inner glide zones; that the kick zone then CARRIES
     # load is the paper's statement on snow, checked in test_paper_topology.py.
@@ -76,7 +77,7 @@ def test_skate_is_stiffer_and_has_no_kick_zone() -> None:
 
 
 def test_skate_front_glide_zone_splits_into_two_patches() -> None:
-    # Seed paper 000, Fig. 5: the front contact of the skate ski splits as the load rises.
+    # Kalliorinne et al. 2023, Fig. 5: the front contact of the skate ski splits as the load rises.
     ski = get_ski("skate")
 
     def front_patches(mass: float) -> int:

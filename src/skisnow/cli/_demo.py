@@ -1,4 +1,4 @@
-"""Commands for the end-to-end demo (first version: the ski; later issues extend it)."""
+"""The end-to-end demo command: the shipped skis on the bench, then their contact with snow."""
 
 from __future__ import annotations
 

@@ -124,7 +124,9 @@ def topo(
 
 @app.command()
 def grind(
-    preset: Annotated[str, typer.Argument(help="Preset S1..S5 (the seed's five structures).")],
+    preset: Annotated[
+        str, typer.Argument(help="Preset S1..S5 (the five structures of Scherge et al. (2021)).")
+    ],
     out: Annotated[Path, typer.Option("--out", help="Output file: .x3p, .npy, .txt or .csv.")],
     size_um: Annotated[
         float, typer.Option("--size-um", help="Side of the square map [µm].")
@@ -274,7 +276,7 @@ def bearing(
             sweep.diameters,
             sweep.fractional_area,
             reference=pressure / regime.ice_hardness,
-            grain_density=micro.SEED_GRAIN_FIT,
+            grain_density=micro.PAPER_GRAIN_FIT,
             title=t.source,
         )
         doc["figures"] = [str(p) for p in save_figure(fig, figure)]
@@ -317,9 +319,11 @@ def rank(
         Path | None,
         typer.Argument(help="CSV: structure, glide_time_s, descriptor columns (e.g. A_fr)."),
     ] = None,
-    seed_tables: Annotated[
+    paper_tables: Annotated[
         bool,
-        typer.Option("--seed-tables", help="Recompute the seed's Table 4 r from its Table 3."),
+        typer.Option(
+            "--paper-tables", help="Recompute Scherge et al.'s (2021) Table 4 r from its Table 3."
+        ),
     ] = False,
     alpha: Annotated[float, typer.Option("--alpha", help="Significance level.")] = 0.05,
     json_out: Annotated[bool, _JSON] = False,
@@ -327,8 +331,8 @@ def rank(
     """Rank structures by glide time; Pearson r of every descriptor (eq. 10) with significance."""
     from skisnow import micro
 
-    if table is None and not seed_tables:
-        raise InputError("give a TABLE.csv or --seed-tables")
+    if table is None and not paper_tables:
+        raise InputError("give a TABLE.csv or --paper-tables")
     doc: dict[str, Any] = {}
     if table is not None:
         from skisnow._checks import check_value
@@ -351,8 +355,8 @@ def rank(
             }
             for c in rt.correlations
         ]
-    if seed_tables:
-        doc["seed_table4"] = micro.seed_table4_comparison()
+    if paper_tables:
+        doc["paper_table4"] = micro.table4_comparison()
     if json_out:
         emit_json(doc)
         return
@@ -373,9 +377,9 @@ def rank(
             ],
             floatfmt=".3f",
         )
-    if seed_tables:
+    if paper_tables:
         print_table(
-            "seed Table 4: r recomputed from Table 3 glide times vs published",
+            "Scherge et al. (2021), Table 4: r recomputed from Table 3 glide times vs published",
             ["parameter", "r published", "r (averages)", "p", "r (runs)", "difference"],
             [
                 [
@@ -386,7 +390,7 @@ def rank(
                     r["r_from_runs"],
                     r["difference"],
                 ]
-                for r in doc["seed_table4"]
+                for r in doc["paper_table4"]
             ],
             floatfmt=".3f",
         )

@@ -40,7 +40,7 @@ def train(
     widths: str = typer.Option(
         "6,16,16,16,12,12",
         "--widths",
-        help="Six layer widths: load, collapse1-3, camber1-2 (paper 000, Figure 3).",
+        help="Six layer widths: load, collapse1-3, camber1-2 (Kalliorinne et al. 2023, Figure 3).",
     ),
     adam_steps: int = typer.Option(600, "--adam-steps", help="Adam steps (first phase)."),
     lm_steps: int = typer.Option(200, "--lm-steps", help="Max Levenberg-Marquardt steps."),
@@ -112,7 +112,10 @@ def predict(
     ] = None,
     json_out: bool = _JSON,
 ) -> None:
-    """Predict the loaded camber profile h(x) with a trained network (paper 000, eq. 1)."""
+    """Predict the loaded camber profile h(x) with a trained network.
+
+    Kalliorinne et al. (2023), eq. 1.
+    """
     import warnings
 
     from skisnow._checks import check_memory, check_value

@@ -14,9 +14,9 @@ of Cross Country Skis", Front. Mech. Eng. 7:659995 (2021):
 * the bearing model (eq. 5–9): :func:`bearing_area`, :func:`bearing_sweep`,
   :func:`bearing_area_reference`;
 * grains (eq. 12–13): :func:`fit_grain_distribution`, :func:`grain_average`,
-  :data:`SEED_GRAIN_FIT`;
+  :data:`PAPER_GRAIN_FIT`;
 * statistics (eq. 10): :func:`pearson`, :func:`critical_r`, :func:`rank_table`,
-  :func:`read_rank_table`, :func:`seed_table4_comparison`;
+  :func:`read_rank_table`, :func:`table4_comparison`;
 * elastic–perfectly-plastic flat-ice contact (Scherge et al. 2021, Fig. 3):
   :func:`elastoplastic_contact` (on the contact package's Polonsky–Keer core with a hardness
   cap), :func:`flat_plastic_area`.
@@ -38,7 +38,7 @@ from skisnow.micro._elastoplastic import (
     ice_base_modulus,
 )
 from skisnow.micro._grains import (
-    SEED_GRAIN_FIT,
+    PAPER_GRAIN_FIT,
     GrainFit,
     fit_grain_distribution,
     grain_average,
@@ -73,7 +73,7 @@ from skisnow.micro._stats import (
     rank,
     rank_table,
     read_rank_table,
-    seed_table4_comparison,
+    table4_comparison,
 )
 from skisnow.micro._topography import (
     Topography,
@@ -88,8 +88,8 @@ from skisnow.micro._topography import (
 __all__ = [
     "DEFAULT_CUTOFF",
     "ICE",
+    "PAPER_GRAIN_FIT",
     "PRESETS",
-    "SEED_GRAIN_FIT",
     "UHMWPE",
     "BearingMap",
     "BearingSweep",
@@ -133,8 +133,8 @@ __all__ = [
     "roughness",
     "sample_grain_diameters",
     "scherge2021",
-    "seed_table4_comparison",
     "slope_factor",
+    "table4_comparison",
     "to_surface_topography",
     "uhmwpe_hardness",
     "write_topography",

@@ -1,13 +1,14 @@
 """Grain-size distribution of the snow and grain-averaged contact area (Scherge et al. 2021,
 eq. 12–13).
 
-The seed fits f(D) = a·D^b·e^(−cD) (a gamma-type density, after Nakamura et al. 2001) to the
-relative frequencies of measured grain diameters by non-linear least squares. Its printed fit
-lost digits in the extraction ("(4.65·10'90)·D^?4922·e^−398:84D"); read with D in metres it is
+Scherge et al. (2021) fit f(D) = a·D^b·e^(−cD) (a gamma-type density, after Nakamura et al.
+2001) to the relative frequencies of measured grain diameters by non-linear least squares. Its
+printed fit lost digits in the extraction ("(4.65·10'90)·D^?4922·e^−398:84D"); read with D in
+metres it is
 
     a = 4.65·10⁹⁰,  b = 24.922,  c = 39 884 m⁻¹,
 
-whose mode b/c = 625 µm sits inside the 500–750 µm the seed reports (§2.3) — the reason for this
+whose mode b/c = 625 µm sits inside the 500–750 µm the paper reports (§2.3) — the reason for this
 reading. With these numbers ∫f dD ≈ 3.3·10⁻⁴ m and max f ≈ 1, i.e. the printed f is scaled to a
 peak of ~1, not to unit area; eq. 13 is therefore evaluated with an explicit normalisation,
 ⟨A_fr⟩ = ∫A_fr(D) f(D) dD / ∫f(D) dD over the diameters computed.
@@ -25,7 +26,7 @@ from scipy import optimize, special
 from skisnow._errors import ConvergenceError, InputError
 
 __all__ = [
-    "SEED_GRAIN_FIT",
+    "PAPER_GRAIN_FIT",
     "GrainFit",
     "fit_grain_distribution",
     "grain_average",
@@ -71,8 +72,8 @@ class GrainFit:
         return np.where(d > 0, out, 0.0)
 
 
-#: The seed's fit (eq. 12), reconstructed as described in the module docstring.
-SEED_GRAIN_FIT = GrainFit(log_a=math.log(4.65e90), b=24.922, c=39884.0)
+#: Scherge et al.'s (2021) fit (eq. 12), reconstructed as described in the module docstring.
+PAPER_GRAIN_FIT = GrainFit(log_a=math.log(4.65e90), b=24.922, c=39884.0)
 
 
 def fit_grain_distribution(
@@ -137,7 +138,7 @@ def sample_grain_diameters(fit: GrainFit, n: int, *, seed: int = 0) -> np.ndarra
 def grain_average(
     diameters: Sequence[float] | np.ndarray,
     values: Sequence[float] | np.ndarray,
-    distribution: GrainFit = SEED_GRAIN_FIT,
+    distribution: GrainFit = PAPER_GRAIN_FIT,
 ) -> float:
     """Grain-averaged value ⟨A_fr⟩ = ∫A_fr(D) f(D) dD / ∫f(D) dD (eq. 13, normalised over the
     given diameter range; trapezoidal rule on the diameters [m] given)."""

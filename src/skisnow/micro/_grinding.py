@@ -11,13 +11,13 @@ correlation length ``grit_length`` (white noise smoothed by a Gaussian kernel) a
 Profiles (u ∈ [−½, ½) is the position across one groove in units of the pitch, v = 2u/width):
 
 * ``'parabolic'``: −depth·(1 − v²) for |v| ≤ 1, else 0 — round-bottomed grooves, cusped ridges
-  (positive skewness, as in the seed's Table 4);
+  (positive skewness, as in Scherge et al.'s (2021) Table 4);
 * ``'v'``: −depth·(1 − |v|) for |v| ≤ 1, else 0 — V grooves;
 * ``'sine'``: −depth·(1 + cos 2πu)/2 (``width`` ignored).
 
-The presets S1–S5 mimic the seed's five structures (Scherge et al. 2021, §2.1, Tables 1 and 4):
+The presets S1–S5 mimic the five structures of Scherge et al. (2021, §2.1, Tables 1 and 4):
 linear fine, medium, coarse, linear with several passes, cross-hatched. Their parameters were
-chosen so that the line roughness across the ski after the seed's 33 µm low-pass lies in the
+chosen so that the line roughness across the ski after the paper's 33 µm low-pass lies in the
 range of Table 1 (Ra 1.37–2.88 µm, Rz 9–13 µm) and the areal values are near Table 4; they are
 plausible stand-ins, NOT the measured topographies (which are not published).
 """
@@ -126,7 +126,7 @@ def grind(
 
 _UM = 1e-6
 
-#: The five structures of the seed (stand-ins; see the module docstring).
+#: The five structures of Scherge et al. (2021) (stand-ins; see the module docstring).
 PRESETS: dict[str, GrindSpec] = {
     "S1": GrindSpec(
         "S1",

@@ -1,6 +1,6 @@
 """Materials of the ski–snow micro contact (Scherge et al. 2021, eq. 1–4 and Table 2).
 
-Temperatures are in °C here — the seed's fits are linear in the Celsius temperature, and a
+Temperatures are in °C here — the paper's fits are linear in the Celsius temperature, and a
 Kelvin argument would invite silent errors — and every function says so in its argument name.
 Hardness and moduli are returned in Pa (SI). The elastic constants of ice and UHMWPE (Table 2)
 are the presets :data:`ICE` and :data:`UHMWPE` of :mod:`skisnow.materials` (one
@@ -42,11 +42,11 @@ def ice_hardness(temperature_c: float, *, model: str = "poirier") -> float:
     """Hardness of ice H(T) [Pa] at a contact time of ~10⁻⁴ s.
 
     * ``'poirier'`` (eq. 2, Poirier et al. 2011): H = −0.6·T + 14.7 MPa (±0.4, ±2.1), valid for
-      T < −1 °C. At −2 °C: 15.9 MPa (Table 2; the seed's §5 prints "159 MPa", a lost decimal
+      T < −1 °C. At −2 °C: 15.9 MPa (Table 2; the paper's §5 prints "159 MPa", a lost decimal
       point).
     * ``'makkonen'`` (eq. 3, Makkonen & Tikanmäki 2014): H = −5.08·T − 15.19 MPa, valid for
       −10 ≤ T ≤ −3 °C. Taken as printed: 0.05 MPa at −3 °C, 35.6 MPa at −10 °C, negative
-      above −2.99 °C, as the seed remarks.
+      above −2.99 °C, as the paper remarks.
 
     A :class:`~skisnow.DomainWarning` is issued outside the model's range; a non-positive
     result raises :class:`~skisnow.InputError`.
@@ -94,7 +94,7 @@ def contact_time(grain_diameter: float, speed: float) -> float:
 
 @dataclass(frozen=True)
 class Regime:
-    """Which body yields (seed §3.5): the softer one deforms plastically."""
+    """Which body yields (Scherge et al. 2021, §3.5): the softer one deforms plastically."""
 
     temperature_c: float
     ice_hardness: float

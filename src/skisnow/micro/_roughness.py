@@ -1,4 +1,4 @@
-"""Roughness parameters (ISO 25178 areal, ISO 4287 line) and the Fourier low-pass of the seed.
+"""Roughness parameters (ISO 25178 areal, ISO 4287 line) and the Fourier low-pass of the paper.
 
 Scherge, Stoll & Moseler (2021), §2.1 and Tables 1 and 4: topographies are Fourier filtered with
 a cut-off wavelength of 33 µm, then Sa, Sq, Sdq, Ssk, Sku (areal) and Ra, Rz (line scans) are
@@ -38,7 +38,7 @@ __all__ = [
     "roughness",
 ]
 
-#: The seed's cut-off wavelength of the Fourier filter [m] (§2.1).
+#: Scherge et al.'s (2021) cut-off wavelength of the Fourier filter [m] (§2.1).
 DEFAULT_CUTOFF: float = 33e-6
 
 
@@ -158,9 +158,9 @@ def roughness(
     form: str = "plane",
     degree: int = 2,
 ) -> Roughness:
-    """All roughness parameters as the seed quotes them: the map prepared by :func:`prepare`
-    (form removal, then the Fourier low-pass with ``cutoff`` [m], ``None``: no filter), then
-    Sa, Sq, Sdq, Ssk, Sku and the line values Ra, Rz, Rt across the ski."""
+    """All roughness parameters as Scherge et al. (2021) quote them: the map prepared by
+    :func:`prepare` (form removal, then the Fourier low-pass with ``cutoff`` [m], ``None``: no
+    filter), then Sa, Sq, Sdq, Ssk, Sku and the line values Ra, Rz, Rt across the ski."""
     t = prepare(topo, cutoff=cutoff, form=form, degree=degree)
     a = areal_parameters(t)
     line = line_parameters(t, axis=0)

@@ -1,7 +1,8 @@
 """Published numbers of Scherge, Stoll & Moseler (2021), Front. Mech. Eng. 7:659995 (CC BY 4.0).
 
-Transcribed from the seed's Tables 1–4 as printed (lengths in µm as in the paper; this module is
-data, so it keeps the paper's units and says so in every name). Known oddities, kept as printed:
+Transcribed from Tables 1–4 of Scherge et al. (2021) as printed (lengths in µm as in the paper;
+this module is data, so it keeps the paper's units and says so in every name). Known oddities,
+kept as printed:
 
 * Table 4 "Sq 213" for S2 is read as 2.13 µm (a lost decimal point; Sq ≥ Sa must hold and
   Sa = 1.63 µm).

@@ -2,7 +2,7 @@
 
 Pearson's r (eq. 10) and its two-sided p-value come from ``scipy.stats.pearsonr`` (exact for
 normal data: t = r√(n−2)/√(1−r²) with n−2 degrees of freedom). With n = 5 structures a
-correlation is significant at α = 0.05 only for |r| > 0.878 (:func:`critical_r`; the seed
+correlation is significant at α = 0.05 only for |r| > 0.878 (:func:`critical_r`; the paper
 rounds to 0.88).
 """
 
@@ -17,7 +17,7 @@ import numpy as np
 from scipy import stats
 
 from skisnow._errors import FileFormatError, InputError
-from skisnow.micro import _scherge2021 as seed
+from skisnow.micro import _scherge2021 as scherge2021
 
 __all__ = [
     "Correlation",
@@ -28,7 +28,7 @@ __all__ = [
     "rank",
     "rank_table",
     "read_rank_table",
-    "seed_table4_comparison",
+    "table4_comparison",
 ]
 
 
@@ -163,22 +163,22 @@ def read_rank_table(path: str | Path, *, alpha: float = 0.05) -> RankTable:
     )
 
 
-def seed_table4_comparison() -> list[dict[str, float | str | bool]]:
+def table4_comparison() -> list[dict[str, float | str | bool]]:
     """Recompute Table 4's r column from Table 3's glide times.
 
     For each roughness parameter: r (and p) against the published averages (r is invariant to
     the scaling of eq. 11, so the dimensionless time gives the same r), r against the mean of
     the three runs recomputed from Table 3, and the published r.
     """
-    names = seed.STRUCTURES
-    t_pub = [seed.TABLE3_AVERAGE_S[s] for s in names]
-    t_runs = [float(np.mean(seed.TABLE3_RUNS_S[s])) for s in names]
+    names = scherge2021.STRUCTURES
+    t_pub = [scherge2021.TABLE3_AVERAGE_S[s] for s in names]
+    t_runs = [float(np.mean(scherge2021.TABLE3_RUNS_S[s])) for s in names]
     rows: list[dict[str, float | str | bool]] = []
-    for param, values in seed.TABLE4.items():
+    for param, values in scherge2021.TABLE4.items():
         x = [values[s] for s in names]
         r1, p1 = pearson(x, t_pub)
         r2, _ = pearson(x, t_runs)
-        pub = seed.TABLE4_R_PUBLISHED[param]
+        pub = scherge2021.TABLE4_R_PUBLISHED[param]
         rows.append(
             {
                 "parameter": param,

@@ -46,7 +46,7 @@ def bearing_figure(
     grain_density: Any = None,
     title: str = "",
 ) -> Figure:
-    """A_fr(D) of the bearing model (seed Fig. 6–7 style), optional p/H line and f(D)."""
+    """A_fr(D) of the bearing model (Scherge et al. 2021, Fig. 6–7 style), p/H line and f(D)."""
     fig, ax = new_figure(1, 1, width=5.5, height=3.4)
     a = ax[0, 0]
     d_um = np.asarray(diameters) * 1e6

@@ -1,4 +1,5 @@
-"""Camber profiles of skis under several loads (the bench view of seed paper 000, Fig. 4-6)."""
+"""Camber profiles of skis under several loads (the bench view of Kalliorinne et al. 2023,
+Fig. 4–6)."""
 
 from __future__ import annotations
 

@@ -1,6 +1,6 @@
 """The ski as a free-floating Euler–Bernoulli beam in unilateral contact with a rigid plane.
 
-This is the *virtual camber bench* behind seed paper 000 (Kalliorinne et al. 2023), §3.1: the
+This is the *virtual camber bench* behind Kalliorinne et al. (2023), §3.1: the
 SkiSelector presses a ski on a flat stone with a mass m through a boot at x_m and measures the
 camber height h(x) (eq. 1, h = f(x, m, x_m)). Here h is computed instead of measured.
 
@@ -226,7 +226,7 @@ def solve_beam(
     max_iterations: int = 500,
     raise_on_failure: bool = True,
 ) -> BeamSolution:
-    """Loaded camber of a free-floating ski on a rigid plane (seed paper 000, §3.1, eq. 1).
+    """Loaded camber of a free-floating ski on a rigid plane (Kalliorinne et al. 2023, §3.1, eq. 1).
 
     Parameters
     ----------

@@ -1,9 +1,9 @@
 """The virtual camber bench: the paper's measurement sequence run on the beam model.
 
-Seed paper 000 (Kalliorinne et al. 2023), §3.1: the SkiSelector measured the camber profile of
+Kalliorinne et al. (2023), §3.1: the SkiSelector measured the camber profile of
 each ski "at loads ranging from 5 kg to 130 kg, positioned between 40 mm and 240 mm behind the
 balance point"; the complete specification was in Fig. 2 (middle), which the text extraction
-lost. The defaults here are therefore the issue's choice: masses 5, 10, ..., 130 kg (5 kg steps,
+lost. The defaults here are therefore skisnow's choice: masses 5, 10, ..., 130 kg (5 kg steps,
 26 masses) at positions -40, -80, ..., -240 mm (40 mm steps, 6 positions), i.e. 156 profiles per
 ski, each sampled every 1 mm over the whole running surface (a bench-like step).
 """

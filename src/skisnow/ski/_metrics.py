@@ -10,7 +10,7 @@ Procedia Eng. 34, 391-396) tabulated for national-team skis:
 * the stiffness k = (F_full - F_half) / (h_half - h_full) between half and full body weight
   (Breitschädel's measure, in N/mm in the field; SI N/m here);
 * the glide-zone contact lengths with Breitschädel's criterion: contact wherever h < 50 µm
-  (seed paper 000, §1 and §3.2), split into rear / middle (kick zone) / front.
+  (Kalliorinne et al. 2023, §1 and §3.2), split into rear / middle (kick zone) / front.
 
 All functions take arrays in SI (m, kg) and return SI. The closing load and the metrics of one
 ski from its beam or a bench file (:func:`~skisnow.ski.ski_metrics`) are in

@@ -1,4 +1,4 @@
-"""The camber network: the block-architecture neural network h = f(x, m, x_m) of paper 000, eq. 1.
+"""The camber network: the block-architecture neural network h = f(x, m, x_m) (eq. 1).
 
 Kalliorinne et al. (2023), section 3.1 and Figure 3, replace one bench measurement per load case by
 a small artificial neural network trained on a whole measurement sequence. Its inputs are the
@@ -75,7 +75,8 @@ class Architecture:
         widths = self.widths
         if len(self.collapse) != 3 or len(self.camber) != 2:
             raise InputError(
-                f"architecture needs 3 collapse and 2 camber widths (paper 000, Figure 3); "
+                "architecture needs 3 collapse and 2 camber widths (Kalliorinne et al. 2023, "
+                f"Figure 3); "
                 f"got collapse={self.collapse}, camber={self.camber}"
             )
         if any((not isinstance(w, (int, np.integer))) or w < 1 for w in widths):
@@ -101,7 +102,7 @@ class Architecture:
         if len(widths) != 6:
             raise InputError(
                 "widths must be six integers: load, collapse1, collapse2, collapse3, camber1, "
-                f"camber2 (paper 000, Figure 3); got {len(widths)}: {widths}"
+                f"camber2 (Kalliorinne et al. 2023, Figure 3); got {len(widths)}: {widths}"
             )
         return cls(load=widths[0], collapse=tuple(widths[1:4]), camber=tuple(widths[4:6]))
 
@@ -483,7 +484,7 @@ class CamberNetwork:
         on_domain_error: Literal["warn", "raise", "ignore"] = "warn",
         clip: bool = True,
     ) -> np.ndarray:
-        """Camber height h = f(x, m, x_m) (paper 000, eq. 1) [m] on the grid ``x``.
+        """Camber height h = f(x, m, x_m) (Kalliorinne et al. 2023, eq. 1) [m] on the grid ``x``.
 
         Parameters
         ----------

@@ -21,7 +21,7 @@ def camber_profile(
     x: ArrayLike | None = None,
     source: Literal["beam", "network"] = "beam",
 ) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """Loaded camber profile h(x) of a ski: seed paper 000, eq. 1, h = f(x, m, x_m).
+    """Loaded camber profile h(x) of a ski: Kalliorinne et al. 2023, eq. 1, h = f(x, m, x_m).
 
     Parameters
     ----------
@@ -38,7 +38,7 @@ def camber_profile(
     source
         ``'beam'`` — the virtual ski (Euler–Bernoulli beam on the rigid bench plane,
         :func:`~skisnow.ski.solve_beam`, Hermite-interpolated); ``'network'`` — the shipped
-        camber network trained on the virtual bench (issue 4).
+        camber network trained on the virtual bench.
 
     Returns
     -------

@@ -1,7 +1,7 @@
 """Virtual skis: the :class:`Ski` description and the two shipped skis ``classic`` and ``skate``.
 
 A ski is described along its running surface by the coordinate x [m], with x = 0 at the balance
-point and x > 0 toward the tip (seed paper 000, Kalliorinne et al. 2023, §3.1 and Fig. 2). It
+point and x > 0 toward the tip (Kalliorinne et al. 2023, §3.1 and Fig. 2). It
 carries two functions of x, both stored as tabulated points and interpolated with the
 shape-preserving monotone cubic (PCHIP) so that no overshoot invents bumps between points:
 

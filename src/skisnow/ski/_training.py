@@ -1,4 +1,4 @@
-"""Training the camber network (paper 000, section 3.1) from any bench table.
+"""Training the camber network (Kalliorinne et al. 2023, section 3.1) from any bench table.
 
 The procedure follows what the paper's MATLAB toolbox does by default, adapted so that it is
 reproducible and honest about its error:
@@ -159,7 +159,10 @@ def train_network(
     report_every: int = 50,
     raise_on_failure: bool = False,
 ) -> CamberNetwork:
-    """Train the block network h = f(x, m, x_m) (paper 000, eq. 1, Figure 3) on a bench table.
+    """Train the block network h = f(x, m, x_m) on a bench table.
+
+    Kalliorinne et al. (2023), eq. 1 and Figure 3; MATLAB's ``trainlm`` procedure (see the
+    module docstring).
 
     Parameters
     ----------
