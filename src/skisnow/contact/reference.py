@@ -22,6 +22,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike
 
+from skisnow._checks import positive_finite as _pos
 from skisnow._errors import InputError
 
 __all__ = [
@@ -34,13 +35,6 @@ __all__ = [
     "hertz_sphere",
     "winkler_free_beam",
 ]
-
-
-def _pos(name: str, v: float) -> float:
-    v = float(v)
-    if not np.isfinite(v) or v <= 0:
-        raise InputError(f"{name} must be finite and positive, got {v!r}")
-    return v
 
 
 @dataclass(frozen=True, kw_only=True)
