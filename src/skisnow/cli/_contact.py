@@ -11,7 +11,7 @@ from skisnow._errors import InputError
 from skisnow.cli._app import app, report_converged, report_domain_warnings
 from skisnow.cli._render import console, emit_json, err_console, print_table
 from skisnow.materials import BASE
-from skisnow.pipeline import DEFAULT_N_POINTS, MODELS, PROFILE_SOURCES
+from skisnow.pipeline import DEFAULT_N_POINTS, MODELS, PROFILE_SOURCES, SKI_MODELS
 
 __all__ = ["zone_record"]
 
@@ -68,6 +68,14 @@ def contact(
             "width is used.",
         ),
     ] = None,
+    ski_model: Annotated[
+        str,
+        typer.Option(
+            "--ski-model",
+            help="rigid (the paper's method: the profile loaded on the stone pressed into the "
+            "snow) or flexible (the ski's beam bends on the snow; needs --ski, no network).",
+        ),
+    ] = "rigid",
     profile_source: Annotated[
         str,
         typer.Option(
@@ -138,6 +146,13 @@ def contact(
         raise InputError(
             f"--profile-source must be one of {', '.join(PROFILE_SOURCES)}, got {profile_source!r}"
         )
+    if ski_model not in SKI_MODELS:
+        raise InputError(f"--ski-model must be one of {', '.join(SKI_MODELS)}, got {ski_model!r}")
+    if ski_model == "flexible" and profile is not None:
+        raise InputError(
+            "--ski-model flexible needs --ski (the beam's EI(x) and z0(x)); a --profile is a "
+            "rigid profile"
+        )
     case = solve_case(
         ski,
         mass=mass_kg,
@@ -151,6 +166,7 @@ def contact(
         width=None if width_mm is None else width_mm * 1e-3,
         label=None if profile is None else Path(str(profile)).name,
         n_across=n_across,
+        ski_model=ski_model,
     )
     sol, zones = case.solution, case.zones
     for note in case.warnings:
@@ -164,18 +180,37 @@ def contact(
     if figure is not None:
         from skisnow.plot import plot_contact, save_figure
 
+        reference = None
+        if ski_model == "flexible":  # the rigid route of the same case, drawn beside it
+            reference = solve_case(
+                ski,
+                mass=mass_kg,
+                load_position=load_position_mm * 1e-3,
+                snow_modulus=snow_modulus_mpa * 1e6,
+                model=model,
+                profile_source="beam",
+                n_points=points,
+                base=base_modulus_mpa * 1e6,
+                n_across=n_across,
+            ).solution
         fig = plot_contact(
             sol,
             zones,
-            title=f"{case.label}: {mass_kg:g} kg at x_m = {load_position_mm:g} mm, "
-            f"snow {snow_modulus_mpa:g} MPa",
+            title=f"{case.label} ({ski_model} ski): {mass_kg:g} kg at x_m = "
+            f"{load_position_mm:g} mm, snow {snow_modulus_mpa:g} MPa",
+            reference=reference,
+            label=(
+                "bent ski base (flexible)" if ski_model == "flexible" else "ski base (positioned)"
+            ),
+            reference_label="rigid profile (paper's method)",
         )
         save_figure(fig, figure)
 
     doc: dict[str, Any] = {
         "ski": ski,
         "profile": None if profile is None else str(profile),
-        "profile_source": profile_source if ski is not None else None,
+        "profile_source": profile_source if ski is not None and ski_model == "rigid" else None,
+        "ski_model": ski_model,
         "model": model,
         "mass_kg": mass_kg,
         "load_position_mm": load_position_mm,
@@ -201,6 +236,8 @@ def contact(
         "moment_residual": sol.moment_residual,
         "warnings": list(case.warnings),
     }
+    if case.flexible is not None:
+        doc["ski_penetration_um"] = case.flexible.penetration * 1e6
     if json_out:
         emit_json(doc)
         return
@@ -219,7 +256,7 @@ def contact(
     ]
     print_table(
         f"Apparent contact: {ski or profile}, {mass_kg:g} kg at {load_position_mm:g} mm, "
-        f"snow {snow_modulus_mpa:g} MPa ({model})",
+        f"snow {snow_modulus_mpa:g} MPa ({model}, {ski_model} ski)",
         [
             "zone",
             "length [mm]",

@@ -83,6 +83,7 @@ def run_contact_demo(
     masses: Any = None,
     snow_moduli: Any = None,
     progress: bool = True,
+    ski_model: str = "rigid",
 ) -> dict[str, Any]:
     """The contact part of the demo: the analogues of the paper's Figures 4–7 (contact pictures),
     Figures 8–9 (maps of a sweep over load and snow, both skis) and one HTML report per ski.
@@ -91,6 +92,7 @@ def run_contact_demo(
     and stations (``n_points`` 4096) with a coarser load step (``masses`` [kg], default 5–130 kg
     in 5 kg steps), at x_m = −120 mm: 1040 contact solves, about 8 s on one core;
     ``skisnow sweep`` and ``examples/fig8_9_maps.py`` run the paper's 1 kg steps.
+    ``ski_model='flexible'``: every case and map with the ski's beam bending on the snow.
     """
     import numpy as np
 
@@ -106,7 +108,8 @@ def run_contact_demo(
     cases = []
     for fig_no, ski, m, x_mm, e_mpa in PAPER_CASES:
         case = solve_case(ski, mass=m, load_position=x_mm * 1e-3, snow_modulus=e_mpa * 1e6,
-                          profile_source=profile_source, n_points=n_points)  # fmt: skip
+                          profile_source=profile_source, n_points=n_points,
+                          ski_model=ski_model)  # fmt: skip
         solution, zones = case.solution, case.zones
         stem = f"{fig_no}_{ski}_{m:g}kg_x{x_mm:g}mm_{e_mpa:g}MPa"
         title = f"{ski}: m = {m:g} kg at x_m = {x_mm:g} mm, E_counter = {e_mpa:g} MPa"
@@ -129,8 +132,9 @@ def run_contact_demo(
         snow_moduli=np.arange(20.0, 401.0, 20.0) * 1e6 if snow_moduli is None else snow_moduli,
         profile_source=profile_source,
         n_points=n_points,
+        ski_model=ski_model,
     )  # fmt: skip
-    store = out / f"maps_{profile_source}.zarr"
+    store = out / (f"maps_{profile_source}.zarr" if ski_model == "rigid" else "maps_flexible.zarr")
     with progress_bar("sweep (Figures 8-9)", disable=not progress, transient=False) as bar:
         run = run_sweep(spec, store, workers=workers, on_progress=bar)
     ds = open_sweep(store)
@@ -140,10 +144,12 @@ def run_contact_demo(
     for stem, fig in sweep_figures(ds, load_positions_mm=[-120.0], kinds=kinds).items():
         files += [str(p) for p in save_figure(fig, out / stem)]
     for ski in spec.skis:
-        study = study_ski(ski, dataset=ds, profile_source=profile_source, n_points=n_points)
+        study = study_ski(ski, dataset=ds, profile_source=profile_source, n_points=n_points,
+                          ski_model=ski_model)  # fmt: skip
         files.append(str(write_report(study, out)))
     return {
         "profile_source": profile_source,
+        "ski_model": ski_model,
         "cases": cases,
         "sweep": {
             "store": str(store), "points": spec.n_points_total,
@@ -161,6 +167,14 @@ def demo(
     workers: Annotated[
         int, typer.Option("--workers", help="Dask workers for the maps' sweep (0: in process).")
     ] = 0,
+    ski_model: Annotated[
+        str,
+        typer.Option(
+            "--ski-model",
+            help="rigid (the paper's method, default) or flexible (the ski's beam bends on the "
+            "snow).",
+        ),
+    ] = "rigid",
 ) -> None:
     """Run the end-to-end demo on the shipped skis and say where the files went."""
     import time
@@ -170,7 +184,11 @@ def demo(
     t0 = time.perf_counter()
     doc = run_ski_demo(out, progress=not json_out)
     source, note = network_or_beam()
-    contact = run_contact_demo(out, profile_source=source, workers=workers, progress=not json_out)
+    if ski_model not in ("rigid", "flexible"):
+        raise InputError(f"--ski-model must be rigid or flexible, got {ski_model!r}")
+    contact = run_contact_demo(
+        out, profile_source=source, workers=workers, progress=not json_out, ski_model=ski_model
+    )
     doc["contact"] = contact
     doc["files"] = doc["files"] + contact["files"]
     doc["note"] = note
@@ -188,7 +206,8 @@ def demo(
     from skisnow.cli._render import print_table
 
     print_table(
-        f"The paper's load cases (Figures 4-7), profiles from the {source}",
+        f"The paper's load cases (Figures 4-7), {ski_model} ski"
+        + (f", profiles from the {source}" if ski_model == "rigid" else ""),
         ["figure", "ski", "m [kg]", "x_m [mm]", "E [MPa]", "rear [mm]", "front [mm]",
          "rear p [kPa]", "front p [kPa]"],
         rows,

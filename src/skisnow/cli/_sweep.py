@@ -53,6 +53,13 @@ def sweep(
             "ski files).",
         ),
     ] = "auto",
+    ski_model: Annotated[
+        str,
+        typer.Option(
+            "--ski-model",
+            help="rigid (the paper's method) or flexible (the ski's beam bends on the snow).",
+        ),
+    ] = "rigid",
     n_points: Annotated[int, typer.Option("--n-points", help="Grid points along the ski.")] = 4096,
     netcdf: Annotated[
         Path | None, typer.Option("--netcdf", help="Also export the finished sweep to NetCDF.")
@@ -89,6 +96,7 @@ def sweep(
         model=model,
         profile_source=resolve_profile_source(profile_source, ski),
         n_points=n_points,
+        ski_model=ski_model,
     )
     n_chunks = len(spec.chunks())
     # the bar starts with the first finished chunk (not before the store checks)
@@ -218,6 +226,13 @@ def report(
             "--day-snow-mpa", help="Snow modulus (MPa) of the stride and the fleet comparison."
         ),
     ] = 100.0,
+    ski_model: Annotated[
+        str,
+        typer.Option(
+            "--ski-model",
+            help="rigid (the paper's method) or flexible (the ski's beam bends on the snow).",
+        ),
+    ] = "rigid",
     json_out: Annotated[bool, typer.Option("--json", help="Print one JSON document.")] = False,
 ) -> None:
     """Write one self-contained HTML report of a ski (metrics, zones at standard loads, maps,
@@ -230,7 +245,8 @@ def report(
     stem = Path(ski).stem if ski.lower().endswith(".json") else ski  # a ski file: its stem
     study = study_ski(
         ski,
-        store=out / f"{stem}_maps_{source}.zarr",
+        store=out
+        / (f"{stem}_maps_{source}.zarr" if ski_model == "rigid" else f"{stem}_maps_flexible.zarr"),
         body_mass=body_mass_kg,
         load_position=load_position_mm * 1e-3,
         workers=workers,
@@ -239,6 +255,7 @@ def report(
         masses=tuple(parse_values(mass_kg, name="--mass-kg")),
         map_moduli=tuple(parse_values(snow_modulus_mpa, name="--snow-modulus-mpa") * 1e6),
         n_points=n_points,
+        ski_model=ski_model,
     )
     from skisnow.workflows import TEMPLATES, compare_fleet, run_cycle, template_history
 
@@ -252,7 +269,12 @@ def report(
         with progress_bar(f"stride {stride}", disable=json_out) as bar:
             cycles.append(
                 run_cycle(
-                    ski, history, snow_modulus=day_snow_mpa * 1e6, n_points=n_points, progress=bar
+                    ski,
+                    history,
+                    snow_modulus=day_snow_mpa * 1e6,
+                    n_points=n_points,
+                    progress=bar,
+                    ski_model=ski_model,  # type: ignore[arg-type]
                 )
             )
     fleet = None
@@ -263,6 +285,7 @@ def report(
             snow_modulus=day_snow_mpa * 1e6,
             load_position=load_position_mm * 1e-3,
             n_points=n_points,
+            ski_model=ski_model,  # type: ignore[arg-type]
         )
         for spec, message in fleet.failures:
             err_console.print(f"[bold red]not compared[/]: {spec}: {message}")

@@ -450,8 +450,8 @@ def solve_flexible_ski(
 ) -> FlexibleSolution:
     """:func:`solve_flexible` for a :class:`skisnow.ski.Ski` (EI(x), z0(x) and width from it).
 
-    The stations are the centres of ``n_points`` equal cells from the tail to the tip (as the
-    ``contact`` command samples the rigid profile); ``width`` defaults to the ski's width;
+    The stations are ``n_points`` evenly spaced from the tail to the tip, both ends included
+    (the grid convention of :mod:`skisnow.pipeline`); ``width`` defaults to the ski's width;
     ``options`` go to :func:`solve_flexible`.
     """
     from skisnow.ski import Ski
@@ -461,8 +461,7 @@ def solve_flexible_ski(
     n_points = int(n_points)
     if n_points < 16:
         raise InputError(f"n_points must be at least 16, got {n_points}")
-    edges = np.linspace(ski.x_tail, ski.x_tip, n_points + 1)
-    x = 0.5 * (edges[1:] + edges[:-1])
+    x = np.linspace(ski.x_tail, ski.x_tip, n_points)
     return solve_flexible(
         x,
         ski.free_camber(x),

@@ -15,7 +15,7 @@ the running surface, both ends included (:func:`stations`), each the centre of o
 >>> case.zones["rear"].length, case.breitschaedel["total"].length   # doctest: +SKIP
 """
 
-from skisnow.pipeline._case import DEFAULT_TOL, MODELS, Case, solve_case
+from skisnow.pipeline._case import DEFAULT_TOL, MODELS, SKI_MODELS, Case, solve_case
 from skisnow.pipeline._profiles import (
     DEFAULT_N_POINTS,
     PROFILE_SOURCES,
@@ -39,6 +39,7 @@ __all__ = [
     "MAP_MODULI",
     "MODELS",
     "PROFILE_SOURCES",
+    "SKI_MODELS",
     "STANDARD_SNOWS",
     "Case",
     "SkiStudy",

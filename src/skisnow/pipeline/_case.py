@@ -29,11 +29,21 @@ from skisnow.pipeline._profiles import (
 )
 
 if TYPE_CHECKING:
-    from skisnow.contact import ContactSolution, Material, Zone, ZoneMetrics
+    from skisnow.contact import (
+        ContactSolution,
+        FlexibleSolution,
+        Material,
+        Zone,
+        ZoneMetrics,
+    )
     from skisnow.ski import Ski
 
 #: Contact models of :func:`skisnow.contact.solve_contact` a case may use.
 MODELS: tuple[str, ...] = ("strip", "surface")
+#: Ski models: ``'rigid'`` (the paper's method: the profile loaded on the stone pressed into the
+#: snow as a rigid body) or ``'flexible'`` (the free beam bending on the snow,
+#: :func:`skisnow.contact.solve_flexible`).
+SKI_MODELS: tuple[str, ...] = ("rigid", "flexible")
 #: Default tolerance of the contact solver (relative pressure change between iterations).
 DEFAULT_TOL: float = 1e-8
 
@@ -57,7 +67,14 @@ class Case:
     modulus, width, kick_zone
         E' of eq. 2 [Pa], the width of the ski [m], the kick zone that defines the middle zone.
     x, height
-        The rigid loaded profile (stations [m], camber height h [m]).
+        The loaded profile (stations [m], camber height h [m]): for the rigid ski the profile
+        loaded on the stone; for the flexible ski the ski bent on the snow, in the frame of the
+        binding (z0 + bending; ``flexible.shape`` is its position on the snow).
+    ski_model
+        ``'rigid'`` or ``'flexible'`` (:data:`SKI_MODELS`).
+    flexible
+        The :class:`~skisnow.contact.FlexibleSolution` (bent ski, beam and snow fields) of a
+        flexible case, ``None`` for a rigid one.
     solution
         The :class:`~skisnow.contact.ContactSolution`.
     zones
@@ -87,6 +104,8 @@ class Case:
     zones: ZoneMetrics = field(repr=False)
     converged: bool
     warnings: tuple[str, ...] = ()
+    ski_model: str = "rigid"
+    flexible: FlexibleSolution | None = field(default=None, repr=False)
 
     @property
     def breitschaedel(self) -> dict[str, Zone]:
@@ -146,6 +165,7 @@ def solve_case(
     n_across: int = 16,
     tol: float = DEFAULT_TOL,
     workers: int | None = None,
+    ski_model: str = "rigid",
 ) -> Case:
     """Solve one case end to end: ski → loaded profile → contact → zones.
 
@@ -193,6 +213,11 @@ def solve_case(
     n_across, tol, workers
         Passed to :func:`skisnow.contact.solve_contact` (cells across the width for 'surface',
         tolerance, FFT threads).
+    ski_model
+        ``'rigid'`` (default, the paper's method: the loaded profile pressed into the snow as a
+        rigid body) or ``'flexible'``: the ski's beam (EI(x), z0(x)) and the snow solved
+        together (:func:`skisnow.contact.solve_flexible`); needs a ski (shipped or a ski file),
+        not a network or a bare profile, and ignores ``profile_source``.
 
     Returns
     -------
@@ -209,6 +234,14 @@ def solve_case(
     from skisnow.contact import BASE, contact_zones, effective_modulus, solve_contact
 
     m, xm, e = _check_inputs(mass, load_position, snow_modulus, model)
+    if ski_model not in SKI_MODELS:
+        raise InputError(f"ski_model: {ski_model!r} is not one of {SKI_MODELS}")
+    if ski_model == "flexible":
+        return _flexible_case(
+            ski, m, xm, e, model=model, n_points=n_points, base=base, poisson=poisson,
+            start=start, profile=profile, width=width, n_across=n_across, tol=tol,
+            workers=workers,
+        )  # fmt: skip
     notes: list[str] = []
     if ski is None:
         if profile is None or width is None:
@@ -243,8 +276,8 @@ def solve_case(
                 else:
                     warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
             h = heights[0]
-    # The rigid ski on elastic snow (eq. 2-3). A flexible ski (beam and half-space solved
-    # together) would replace this step and the profile above by one coupled solve.
+    # The rigid ski on elastic snow (eq. 2-3); the flexible ski replaces this step and the
+    # profile above by one coupled solve (_flexible_case).
     counter_base = BASE if base is None else base
     modulus = effective_modulus(e, counter_base, poisson=poisson)
     solution = solve_contact(
@@ -284,4 +317,85 @@ def solve_case(
         zones=zones,
         converged=bool(solution.converged),
         warnings=tuple(notes),
+    )
+
+
+#: Physical range of the snow (counter-surface) modulus of a flexible case [Pa]: from the
+#: softest snow to stone; outside it the value is a unit slip (MPa given as Pa).
+SNOW_MODULUS_LIMITS: tuple[float, float] = (1e6, 1e12)
+
+
+def _flexible_case(
+    ski: Any,
+    m: float,
+    xm: float,
+    e: float,
+    *,
+    model: str,
+    n_points: int,
+    base: Any,
+    poisson: float,
+    start: ArrayLike | None,
+    profile: Any,
+    width: float | None,
+    n_across: int,
+    tol: float,
+    workers: int | None,
+) -> Case:
+    """The flexible ski on elastic snow: beam and half-space in one solve (no loaded profile)."""
+    from skisnow.contact import BASE, contact_zones, effective_modulus, solve_flexible
+
+    if ski is None or profile is not None:
+        raise InputError(
+            "ski_model='flexible' needs a ski (EI(x) and z0(x): a shipped ski or a ski file), "
+            "not a bare or precomputed profile"
+        )
+    if width is not None:
+        raise InputError("width: a flexible case uses the ski's own width")
+    lo, hi = SNOW_MODULUS_LIMITS
+    if not lo <= e <= hi:
+        raise InputError(
+            f"snow_modulus [Pa]: {e:g} lies outside the physical range {lo:g}..{hi:g} Pa "
+            "(snow 20–400 MPa, stone 70 GPa)"
+        )
+    s = resolve_ski(ski)
+    x = stations(s, n_points)
+    modulus = effective_modulus(e, BASE if base is None else base, poisson=poisson)
+    flex = solve_flexible(
+        x,
+        s.free_camber(x),
+        s.stiffness(x),
+        load=m * STANDARD_GRAVITY,
+        load_position=xm,
+        modulus=modulus,
+        width=s.width,
+        model=model,  # type: ignore[arg-type]
+        n_across=n_across,
+        initial_pressure=start,
+        tol=tol,
+        workers=workers,
+    )
+    solution = flex.contact
+    zones = contact_zones(solution, kick_zone=s.kick_zone)
+    height = solution.height if solution.height.ndim == 1 else solution.height[:, 0]
+    return Case(
+        ski=s,
+        label=s.name,
+        mass=m,
+        load_position=xm,
+        snow_modulus=e,
+        model=model,
+        profile_source="beam",
+        n_points=int(x.size),
+        modulus=float(modulus),
+        width=float(s.width),
+        kick_zone=s.kick_zone,
+        x=x,
+        height=np.asarray(height),
+        solution=solution,
+        zones=zones,
+        converged=bool(solution.converged),
+        warnings=(),
+        ski_model="flexible",
+        flexible=flex,
     )

@@ -43,6 +43,8 @@ class SkiStudy:
         The sweep over load and snow (:func:`skisnow.sweep.open_sweep`) holding the ski.
     profile_source, n_points
         Where the loaded profiles came from and the stations along the ski.
+    ski_model
+        ``'rigid'`` (the paper's method) or ``'flexible'`` (the beam bent on the snow).
     """
 
     ski: Any
@@ -53,6 +55,7 @@ class SkiStudy:
     maps: Any = field(repr=False)
     profile_source: str
     n_points: int
+    ski_model: str = "rigid"
 
 
 def standard_cases(
@@ -63,6 +66,7 @@ def standard_cases(
     snows: Sequence[float] = STANDARD_SNOWS,
     profile_source: str = "network",
     n_points: int = DEFAULT_N_POINTS,
+    ski_model: str = "rigid",
 ) -> tuple[Case, ...]:
     """The cases at the standard loads: half and full body weight at ``load_position`` on every
     snow of ``snows`` [Pa] (ascending), each solved by :func:`solve_case`."""
@@ -74,6 +78,7 @@ def standard_cases(
             snow_modulus=e,
             profile_source=profile_source,
             n_points=n_points,
+            ski_model=ski_model,
         )
         for m in (0.5 * body_mass, body_mass)
         for e in sorted(float(v) for v in snows)
@@ -94,6 +99,7 @@ def study_ski(
     n_points: int = DEFAULT_N_POINTS,
     workers: int | None = 0,
     scheduler: str | None = None,
+    ski_model: str = "rigid",
 ) -> SkiStudy:
     """Compute what the report of ``ski`` shows (see the module docstring).
 
@@ -112,6 +118,8 @@ def study_ski(
         ``scheduler`` (:func:`skisnow.sweep.run_sweep`).
     profile_source, n_points
         Loaded profiles of the cases and the maps (:func:`solve_case`).
+    ski_model
+        ``'rigid'`` or ``'flexible'`` for the cases and the maps (:func:`solve_case`).
     """
     from skisnow.ski import ski_metrics
     from skisnow.sweep import SweepSpec, open_sweep, run_sweep
@@ -127,6 +135,7 @@ def study_ski(
             snow_moduli=tuple(map_moduli),
             profile_source=profile_source,
             n_points=n_points,
+            ski_model=ski_model,
         )
         run_sweep(spec, store, workers=workers, scheduler=scheduler)
         dataset = open_sweep(store)
@@ -142,8 +151,10 @@ def study_ski(
             snows=snows,
             profile_source=profile_source,
             n_points=n_points,
+            ski_model=ski_model,
         ),
         maps=dataset,
         profile_source=profile_source,
         n_points=int(n_points),
+        ski_model=ski_model,
     )

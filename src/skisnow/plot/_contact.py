@@ -22,12 +22,17 @@ def plot_contact(
     *,
     title: str | None = None,
     height_range_um: float | None = None,
+    reference: ContactSolution | None = None,
+    label: str = "ski base (positioned)",
+    reference_label: str = "rigid profile (positioned)",
 ) -> Figure:
     """Figure of one contact solution (x along the ski [mm], heights [µm], pressure [kPa]).
 
     ``zones`` (from :func:`~skisnow.contact.contact_zones`) shades the rear/middle/front
     contact intervals. ``height_range_um`` caps the height axis (default: 4× the deepest snow
     displacement, at least 100 µm), so that the pocket and the deformed snow are both visible.
+    ``reference``: a second solution of the same case drawn dashed (its positioned ski base and
+    pressure), e.g. the rigid profile beside the flexible ski's bent base.
     """
     s = solution
     xi = s.x - s.load_position
@@ -52,7 +57,14 @@ def plot_contact(
             for name in ("rear", "middle", "front"):
                 for a, b in zones[name].intervals:
                     ax.axvspan(a * 1e3, b * 1e3, color=ZONE_COLORS[name], alpha=0.12, lw=0)
-        ax.plot(x_mm, ski * 1e6, color=COLORS["profile"], label="ski base (positioned)")
+        ax.plot(x_mm, ski * 1e6, color=COLORS["profile"], label=label)
+        if reference is not None:
+            r = reference
+            rh = r.height if r.height.ndim == 1 else r.height.min(axis=1)
+            rp = r.pressure if r.pressure.ndim == 1 else r.pressure.mean(axis=1)
+            r_ski = rh - r.translation - r.rotation * (r.x - r.load_position)
+            ax.plot(r.x * 1e3, r_ski * 1e6, ls="--", color=COLORS["profile"], lw=0.9,
+                    alpha=0.8, label=reference_label)  # fmt: skip
         ax.plot(x_mm, snow * 1e6, color=COLORS["snow"], lw=0.9, label="deformed snow")
         ax.set_ylim(bottom, top)
         ax.set_xlim(x_mm[0], x_mm[-1])
@@ -60,8 +72,12 @@ def plot_contact(
         ax.set_ylabel("height [µm]")
         ax2 = ax.twinx()
         ax2.plot(x_mm, p * 1e-3, color=COLORS["pressure"], lw=1.0, label="apparent pressure")
+        if reference is not None:
+            ax2.plot(r.x * 1e3, rp * 1e-3, ls="--", color=COLORS["pressure"], lw=0.8,
+                     alpha=0.8, label="pressure, " + reference_label.split(" (")[0])  # fmt: skip
         ax2.set_ylabel("apparent pressure [kPa]", color=COLORS["pressure"])
-        ax2.set_ylim(0, max(float(p.max()) * 1e-3 * 1.15, 1e-9))
+        p_top = max(float(p.max()), float(rp.max()) if reference is not None else 0.0)
+        ax2.set_ylim(0, max(p_top * 1e-3 * 1.15, 1e-9))
         ax2.grid(False)
         ax2.spines["right"].set_visible(True)
         # load arrow at x_m and the glide direction (toward the tip, +x)

@@ -89,7 +89,12 @@ def _standard_loads(study: Any) -> Section:
     return Section(
         "Contact at the standard loads",
         (
-            f"Loaded profile from the {study.profile_source}; contact on elastic snow with force "
+            (
+                f"Loaded profile from the {study.profile_source}, pressed as a rigid body; "
+                if getattr(study, "ski_model", "rigid") == "rigid"
+                else "Flexible ski: the beam (EI(x), z0(x)) bending on the snow, solved with it; "
+            )
+            + "contact on elastic snow with force "
             "and moment balance (Kalliorinne et al. 2023, eq. 2–3), equivalent modulus E' of the "
             f"ski base and the snow (eq. 2), {first.model} model, {study.n_points} stations "
             "along the ski.",
@@ -146,7 +151,8 @@ def _maps_section(study: Any) -> Section:
     n_bad = int((~ds["converged"].sel(ski=ski).values).sum())
     note = (
         f"Sweep of {ds.sizes['mass_kg']} masses × {ds.sizes['snow_modulus_mpa']} snow moduli at "
-        f"x_m = {pos_mm:g} mm ({ds.attrs.get('profile_source', '?')} profiles); "
+        f"x_m = {pos_mm:g} mm ({ds.attrs.get('profile_source', '?')} profiles, "
+        f"{ds.attrs.get('ski_model', 'rigid')} ski); "
         f"{n_bad} points without a converged solution (drawn as gaps)."
     )
     return Section("Maps over load and snow", (note,), items)

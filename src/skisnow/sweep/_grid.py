@@ -59,6 +59,8 @@ class SweepSpec:
             1e-8 resolves areas and pressures far below what a map can show.
         warm_start: start each contact solve from the pressure of the previous (lighter) mass
             of the chunk; ``False`` solves every point cold (for benchmarking the warm starts).
+        ski_model: ``'rigid'`` (the paper's method: the loaded profile pressed into the snow)
+            or ``'flexible'`` (the ski's beam bends on the snow; no profile, no network).
     """
 
     skis: tuple[str, ...]
@@ -74,6 +76,7 @@ class SweepSpec:
     warm_start: bool = True
     zones: tuple[str, ...] = field(default=ZONES)
     ski_files: tuple[tuple[str, str], ...] = ()
+    ski_model: str = "rigid"
 
     def __post_init__(self) -> None:
         from skisnow.ski import SHIPPED_SKIS, get_ski, ski_to_json
@@ -124,6 +127,8 @@ class SweepSpec:
         if not (0 < self.tol < 1):
             raise InputError(f"tol: need 0 < tol < 1, got {self.tol}")
         object.__setattr__(self, "zones", tuple(self.zones))
+        if self.ski_model not in ("rigid", "flexible"):
+            raise InputError(f"ski_model: {self.ski_model!r} is not one of ('rigid', 'flexible')")
 
     # ----------------------------------------------------------------------------------------
     def ski(self, label: str) -> Any:  # a skisnow.ski.Ski (imported lazily)

@@ -34,6 +34,8 @@ def loaded_profiles(spec: SweepSpec, ski_name: str, load_position: float) -> dic
     """
     from skisnow import pipeline
 
+    if spec.ski_model == "flexible":  # the flexible ski needs no loaded profile
+        return {}
     x, heights = pipeline.loaded_profiles(
         spec.ski(ski_name),  # the definition the spec carries (a ski file's, or a shipped ski)
         spec.masses,
@@ -74,7 +76,8 @@ def solve_point(
         base=spec.base_modulus,
         poisson=spec.poisson,
         start=initial_pressure,
-        profile=profile,
+        profile=None if spec.ski_model == "flexible" else profile,
+        ski_model=spec.ski_model,
         tol=spec.tol,
         workers=1,  # one FFT thread: parallelism comes from the Dask workers
     )
@@ -112,7 +115,7 @@ def contact_chunk(
     previous: np.ndarray | None = None
     for a, mass in enumerate(spec.masses):
         try:
-            profile = None if profiles is None else (profiles["x"], profiles["height"][a])
+            profile = None if not profiles else (profiles["x"], profiles["height"][a])
             case = solve_point(
                 spec,
                 ski_name,

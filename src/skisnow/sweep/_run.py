@@ -86,6 +86,7 @@ def _attrs(spec: SweepSpec, fn: ChunkFunction) -> dict[str, Any]:
         "skis": ", ".join(spec.skis),
         "model": spec.model,
         "profile_source": spec.profile_source,
+        "ski_model": spec.ski_model,
         "n_points": spec.n_points,
         "base_modulus_mpa": spec.base_modulus / 1e6,
         "poisson_ratio": spec.poisson,
