@@ -31,6 +31,9 @@ def test_beam_operator_is_symmetric_psd_and_its_diagonal_is_exact() -> None:
     assert np.abs(k - k.T).max() <= 1e-12 * np.abs(k).max()
     assert np.linalg.eigvalsh(0.5 * (k + k.T)).min() >= -1e-12 * np.abs(k).max()
     assert np.allclose(np.diag(k), op.diagonal, rtol=1e-12, atol=0)
+    # the compiled single-vector path is the batched one
+    f = np.random.default_rng(1).normal(size=x.size)
+    assert np.allclose(op(f), k @ f, rtol=1e-12, atol=1e-12 * np.abs(k @ f).max())
     # the clamp: the two halves do not see each other's loads
     rear = x < 0.137
     assert np.all(k[np.ix_(rear, ~rear)] == 0.0)

@@ -41,6 +41,13 @@ class _Half:
         """Deflection [m] (per station of this half) under nodal forces f [N] (last axis)."""
         if self.d.size == 0:
             return f[..., :0]
+        if f.ndim == 1:
+            # compiled (numba imported on first use: the CLI and sweep workers start without it)
+            from skisnow.contact._beam_kernel import cantilever_apply as _cantilever_apply
+
+            out = np.empty(self.d.size)
+            _cantilever_apply(np.ascontiguousarray(f), self.d, self.t, self.c, out)
+            return out
         # moment at the nodes t: M(t_k) = Σ_{d_i > t_k} (d_i − t_k) f_i
         rev0 = np.cumsum(f[..., ::-1], axis=-1)[..., ::-1]  # Σ_{i >= j} f_i
         rev1 = np.cumsum((f * self.d)[..., ::-1], axis=-1)[..., ::-1]

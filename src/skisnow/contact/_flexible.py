@@ -624,7 +624,7 @@ def _active_set_cg(
         p[blocked] = 0.0
         np.maximum(p, 0.0, out=p)
         since_refresh += 1
-        if since_refresh >= _REFRESH or not conj:
+        if since_refresh >= _REFRESH:
             kp = apply(p)
             n_apply += 1
             g = kp + h
