@@ -69,7 +69,7 @@ def test_contact_cli_flexible_needs_a_ski(capsys, tmp_path: Path) -> None:
     prof.write_text(
         "x_mm,height_mm\n" + "\n".join(f"{x},{1e-6 * x * x}" for x in range(-900, 901, 10))
     )
-    assert main([*BASE, "--profile", str(prof), "--ski-model", "flexible"]) == 1
+    assert main([*BASE, "--profile", str(prof), "--ski-model", "flexible"]) == 2  # bad input
     err = capsys.readouterr().err
     assert "--ski-model flexible needs --ski" in err and err.count("\n") == 1
 

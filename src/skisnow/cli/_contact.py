@@ -122,6 +122,13 @@ def contact(
         )
     if profile is not None:
         width_mm = 44.0 if width_mm is None else width_mm
+    if ski_model not in SKI_MODELS:
+        raise InputError(f"--ski-model must be one of {', '.join(SKI_MODELS)}, got {ski_model!r}")
+    if ski_model == "flexible" and profile is not None:
+        raise InputError(
+            "--ski-model flexible needs --ski (the beam's EI(x) and z0(x)); a --profile is a "
+            "rigid profile"
+        )
     if ski is not None:
         from skisnow.cli._ski import resolve_profile_source
 
@@ -145,13 +152,6 @@ def contact(
     if ski is not None and profile_source not in PROFILE_SOURCES:
         raise InputError(
             f"--profile-source must be one of {', '.join(PROFILE_SOURCES)}, got {profile_source!r}"
-        )
-    if ski_model not in SKI_MODELS:
-        raise InputError(f"--ski-model must be one of {', '.join(SKI_MODELS)}, got {ski_model!r}")
-    if ski_model == "flexible" and profile is not None:
-        raise InputError(
-            "--ski-model flexible needs --ski (the beam's EI(x) and z0(x)); a --profile is a "
-            "rigid profile"
         )
     case = solve_case(
         ski,
