@@ -8,6 +8,7 @@ from skisnow.cli import (  # noqa: F401  (registers)
     _contact,
     _demo,
     _explore,
+    _identify,
     _micro,
     _network,
     _ski,

@@ -23,7 +23,8 @@ Equation map (Kalliorinne et al. 2023 unless named):
   skis :data:`SHIPPED_SKIS`, :class:`Ski`, :func:`get_ski` (a shipped name or a ski file),
   :class:`Provenance`; ski files (JSON ``skisnow-ski`` v1, validated, exact round trip):
   :func:`read_ski`, :func:`write_ski`, :func:`ski_to_json`; the passport (EI(x), z0(x), bands,
-  metrics): :func:`ski_passport` → :class:`SkiPassport`; beam references for the
+  metrics): :func:`ski_passport` → :class:`SkiPassport`; EI(x) and z0(x) identified from a
+  bench sequence: :func:`identify_ski` → :class:`IdentificationResult`; beam references for the
   tests: :func:`cantilever_tip_deflection`, :func:`three_point_bending_deflection`,
   :func:`beam_stiffness_matrix`, :func:`hermite_interpolate`.
 * Practitioners' metrics (Breitschädel 2012): camber height :func:`camber_height`, wax pocket
@@ -100,6 +101,7 @@ _LAZY = {
     # the model's file format lives in skisnow.io; re-exported here for convenience
     **dict.fromkeys(("load_network", "save_network", "shipped_network"), "skisnow.io"),
     **dict.fromkeys(("TrainingProgress", "train_network"), "skisnow.ski._training"),
+    **dict.fromkeys(("IdentificationResult", "identify_ski"), "skisnow.ski._identify"),
 }
 
 
@@ -119,6 +121,7 @@ __all__ = [
     "BlockNetwork",
     "CamberNetwork",
     "Domain",
+    "IdentificationResult",
     "Provenance",
     "ReferenceProfile",
     "Scaling",
@@ -139,6 +142,7 @@ __all__ = [
     "get_ski",
     "height_above_support",
     "hermite_interpolate",
+    "identify_ski",
     "load_network",
     "loaded_profile",
     "read_ski",

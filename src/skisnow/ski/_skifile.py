@@ -174,7 +174,9 @@ def _encode(obj: Any, indent: int = 0) -> str:
     if isinstance(obj, _Mm):
         return obj.text()
     if isinstance(obj, float):
-        return repr(obj)
+        if not math.isfinite(obj):
+            raise InputError(f"a ski file holds finite numbers only, got {obj}")
+        return repr(float(obj))  # a NumPy float's repr is not JSON
     return json.dumps(obj, ensure_ascii=False)
 
 

@@ -77,7 +77,8 @@ class Provenance:
     def __post_init__(self) -> None:
         object.__setattr__(self, "sources", tuple(str(s) for s in self.sources))
         items = self.details.items() if isinstance(self.details, dict) else self.details
-        object.__setattr__(self, "details", tuple((str(k), v) for k, v in items))
+        plain = tuple((str(k), v.item() if isinstance(v, np.generic) else v) for k, v in items)
+        object.__setattr__(self, "details", plain)
 
     def detail(self, key: str, default: Any = None) -> Any:
         """The value of detail ``key`` (``default`` if absent)."""

@@ -1,0 +1,111 @@
+"""``skisnow identify``: EI(x) and z0(x) of a ski from its camber-bench file (thin: parse, call
+:func:`skisnow.ski.identify_ski`, write the ski file, render)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated
+
+import typer
+
+from skisnow._errors import InputError
+from skisnow.cli._app import app
+from skisnow.cli._render import emit_json, err_console, print_table
+
+
+@app.command()
+def identify(
+    bench_file: Annotated[Path, typer.Argument(help="Bench table (.csv or .parquet).")],
+    out: Annotated[Path, typer.Option("--out", help="The identified ski file (.json).")],
+    ski: Annotated[
+        str | None, typer.Option("--ski", help="Which ski of a multi-ski bench.")
+    ] = None,
+    name: Annotated[str | None, typer.Option("--name", help="Name of the identified ski.")] = None,
+    x_tail_mm: Annotated[
+        float | None,
+        typer.Option("--x-tail-mm", help="Tail end of the running surface [mm] (default: file)."),
+    ] = None,
+    x_tip_mm: Annotated[
+        float | None,
+        typer.Option("--x-tip-mm", help="Tip end of the running surface [mm] (default: file)."),
+    ] = None,
+    noise_mm: Annotated[
+        float | None,
+        typer.Option("--noise-mm", help="Bench noise [mm] (default: estimated from the data)."),
+    ] = None,
+    regularisation: Annotated[
+        float | None,
+        typer.Option("--regularisation", help="λ of the log-EI smoothness (default: GCV)."),
+    ] = None,
+    n_stiffness: Annotated[
+        int, typer.Option("--n-stiffness", help="Spline coefficients of log EI(x).")
+    ] = 14,
+    n_camber: Annotated[
+        int, typer.Option("--n-camber", help="Spline coefficients of z0(x).")
+    ] = 100,
+    figure: Annotated[
+        Path | None,
+        typer.Option("--figure", help="Save the passport figure (png/svg/pdf by suffix)."),
+    ] = None,
+    json_out: Annotated[bool, typer.Option("--json", help="Print one JSON document.")] = False,
+) -> None:
+    """Identify EI(x) and z0(x) from a whole bench sequence (beam on the stone, least squares)."""
+    from skisnow.io import read_bench
+    from skisnow.ski import identify_ski, write_ski
+
+    if out.suffix.lower() != ".json":
+        raise InputError(f"--out {out}: the identified ski is written as a ski file (.json)")
+    bench = read_bench(bench_file)
+
+    def say(msg: str) -> None:
+        if not json_out:
+            err_console.print(f"[dim]{msg}[/dim]")
+
+    res = identify_ski(
+        bench,
+        ski=ski,
+        name=name,
+        x_tail=None if x_tail_mm is None else x_tail_mm * 1e-3,
+        x_tip=None if x_tip_mm is None else x_tip_mm * 1e-3,
+        noise=None if noise_mm is None else noise_mm * 1e-3,
+        regularisation=regularisation,
+        n_stiffness=n_stiffness,
+        n_camber=n_camber,
+        progress=say,
+        source=str(bench_file),
+    )
+    write_ski(res.ski, out)
+    if figure is not None:
+        from skisnow.plot import plot_passport, save_figure
+
+        fmt = figure.suffix.lower().lstrip(".")
+        if fmt not in ("png", "svg", "pdf"):
+            raise InputError(f"--figure {figure}: use a .png, .svg or .pdf file name")
+        save_figure(plot_passport(res.ski), figure.with_suffix(""), formats=(fmt,))
+    doc = {
+        "ski": res.ski.name,
+        "file": str(out),
+        "load_cases": res.n_cases,
+        "samples": res.n_samples,
+        "parameters": res.n_parameters,
+        "noise_mm": res.noise * 1e3,
+        "residual_rms_mm": res.residual_rms * 1e3,
+        "regularisation": res.regularisation,
+        "criterion": res.criterion,
+        "converged": res.converged,
+        "message": res.message,
+        "seconds": res.seconds,
+        "gcv": [
+            {"lambda": lam, "gcv": g, "misfit_rms_sigma": m, "edf": e} for lam, g, m, e in res.gcv
+        ],
+    }
+    if json_out:
+        emit_json(doc)
+        return
+    rows = [[k, v] for k, v in doc.items() if k != "gcv"]
+    print_table("Identified ski (passport: skisnow skis --show FILE)", ["", "value"], rows)
+    print_table(
+        "Regularisation (GCV)",
+        ["lambda", "GCV", "misfit rms / σ", "edf"],
+        [[g["lambda"], g["gcv"], g["misfit_rms_sigma"], g["edf"]] for g in doc["gcv"]],
+    )
