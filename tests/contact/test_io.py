@@ -13,21 +13,21 @@ from skisnow.contact import fields_table, read_profile, solve_contact, write_fie
 
 
 def test_read_profile_converts_units_and_resamples(tmp_path: Path) -> None:
-    x_mm = np.array([0, 1, 2, 3, 5, 6, 7, 8, 9, 10.0])  # one irregular step
+    x_mm = 100 * np.array([0, 1, 2, 3, 5, 6, 7, 8, 9, 10.0])  # one irregular step
     csv = tmp_path / "p.csv"
-    pd.DataFrame({"x_mm": x_mm, "height_mm": 2 * x_mm}).to_csv(csv, index=False)
+    pd.DataFrame({"x_mm": x_mm, "height_mm": 0.02 * x_mm}).to_csv(csv, index=False)
     x, h = read_profile(csv)
     assert np.allclose(np.diff(x), np.diff(x).mean(), rtol=1e-12)  # uniform now
-    assert x[0] == 0 and x[-1] == pytest.approx(0.010)
-    assert np.allclose(h, 2 * x, rtol=1e-12)  # a linear profile is resampled exactly
+    assert x[0] == 0 and x[-1] == pytest.approx(1.0)
+    assert np.allclose(h, 0.02 * x, rtol=1e-12)  # a linear profile is resampled exactly
     with pytest.raises(FileFormatError, match="uniformly"):
         read_profile(csv, resample=False)
 
 
 def test_read_profile_errors(tmp_path: Path) -> None:
     csv = tmp_path / "p.csv"
-    csv.write_text("x_mm,height_mm\n" + "\n".join(f"{10 - i},0" for i in range(10)) + "\n")
-    with pytest.raises(FileFormatError, match="increase"):
+    csv.write_text("x_mm,height_mm\n" + "\n".join(f"{100 * (10 - i)},{0.5 * i}" for i in range(10)) + "\n")
+    with pytest.raises(FileFormatError, match="line 3, column x_mm: x_mm must increase"):
         read_profile(csv)
     with pytest.raises(FileFormatError, match="no such"):
         read_profile(tmp_path / "missing.csv")

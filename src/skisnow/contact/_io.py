@@ -8,6 +8,7 @@
 
 from __future__ import annotations
 
+import io
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -44,9 +45,20 @@ def read_profile(path: str | Path, *, resample: bool = True) -> tuple[np.ndarray
     if not path.is_file():
         raise FileFormatError(f"{path}: no such profile file")
     try:
-        table = pd.read_csv(path, comment="#")
+        text = path.read_text(encoding="utf-8")
+        table = pd.read_csv(io.StringIO(text), comment="#")
     except (ValueError, OSError) as exc:  # pandas' parser and empty-data errors are ValueErrors
-        raise FileFormatError(f"{path}: cannot be read as CSV ({exc})") from None
+        raise FileFormatError(
+            f"{path}: cannot be read as a UTF-8 CSV table with columns x_mm,height_mm ({exc})"
+        ) from None
+    # file line (1-based, as the user counts) of each data row: comments and blanks skipped
+    data_lines = [
+        no for no, line in enumerate(text.splitlines(), start=1) if line.split("#", 1)[0].strip()
+    ][1:]
+
+    def line(i: int) -> str:
+        return f"line {data_lines[i]}" if i < len(data_lines) else f"data row {i + 1}"
+
     missing = [c for c in PROFILE_COLUMNS if c not in table.columns]
     if missing:
         raise FileFormatError(
@@ -58,19 +70,29 @@ def read_profile(path: str | Path, *, resample: bool = True) -> tuple[np.ndarray
         v = pd.to_numeric(table[col], errors="coerce").to_numpy(dtype=float)
         bad = np.flatnonzero(~np.isfinite(v))
         if bad.size:
-            row = int(bad[0]) + 2  # 1-based, after the header line
             raise FileFormatError(
-                f"{path}: row {row}, column {col}: {table[col].iloc[bad[0]]!r} is not a finite "
-                "number"
+                f"{path}: {line(int(bad[0]))}, column {col}: {table[col].iloc[bad[0]]!r} is not "
+                "a finite number"
             )
         values[col] = v
+    from skisnow._checks import check_array
+
+    for col, quantity in (("x_mm", "x"), ("height_mm", "camber_height")):
+        check_array(values[col], quantity, where=f"{path}, column {col}", row_label=line,
+                    impossible=FileFormatError)  # fmt: skip
     x, h = values["x_mm"] * 1e-3, values["height_mm"] * 1e-3
     if x.size < 8:
         raise FileFormatError(f"{path}: a profile needs at least 8 rows, found {x.size}")
+    if x[-1] - x[0] > 3.0:
+        from skisnow._checks import check_value
+
+        check_value((x[-1] - x[0]) * 1e3, "ski_length", where=f"{path}, column x_mm (its span)")
     d = np.diff(x)
     if np.any(d <= 0):
-        row = int(np.flatnonzero(d <= 0)[0]) + 3
-        raise FileFormatError(f"{path}: row {row}: x_mm must increase strictly")
+        i = int(np.flatnonzero(d <= 0)[0]) + 1
+        raise FileFormatError(
+            f"{path}: {line(i)}, column x_mm: x_mm must increase strictly from row to row"
+        )
     if np.max(np.abs(d - d.mean())) > 1e-6 * d.mean():
         if not resample:
             raise FileFormatError(f"{path}: x_mm is not uniformly spaced")

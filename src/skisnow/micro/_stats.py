@@ -155,6 +155,31 @@ def read_rank_table(path: str | Path, *, alpha: float = 0.05) -> RankTable:
         raise FileFormatError(f"{path}: row {row}, column 'glide_time_s': not a number")
     if not descriptors:
         raise FileFormatError(f"{path}: no descriptor column beside structure and glide_time_s")
+    from skisnow._checks import check_array, check_value
+
+    check_value(alpha, "alpha", where="alpha (CLI: --alpha)")
+    check_array(
+        times.to_numpy(dtype=np.float64),
+        "glide_time",
+        where=f"{path}, column 'glide_time_s'",
+        row_label=lambda i: f"line {i + 2}",
+        impossible=FileFormatError,
+    )
+    names = [str(s) for s in df["structure"]]
+    seen: dict[str, int] = {}
+    for i, name in enumerate(names):
+        if name in seen:
+            raise FileFormatError(
+                f"{path}: line {i + 2}, column 'structure': {name!r} already on line "
+                f"{seen[name] + 2}; each structure needs one row (average repeated runs first)"
+            )
+        seen[name] = i
+    for col, values in [("glide_time_s", times.to_numpy(dtype=np.float64)), *descriptors.items()]:
+        if np.ptp(values) == 0.0:
+            raise FileFormatError(
+                f"{path}: column {col!r} is constant ({values[0]:g}); Pearson's r with it is "
+                "undefined: give a column that varies between structures"
+            )
     return rank_table(
         [str(s) for s in df["structure"]],
         times.to_numpy(dtype=np.float64),
