@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 from skisnow import FileFormatError
+from skisnow.io import metadata_checksum
 from skisnow.ski import load_network, save_network
 
 
@@ -80,7 +81,32 @@ def test_architecture_mismatch(toy_network, tmp_path):
     doc = json.loads(js.read_text())
     doc["architecture"]["collapse"] = [7, 4, 6]
     js.write_text(json.dumps(doc))
+    with pytest.raises(FileFormatError, match="fails its checksum"):
+        load_network(tmp_path / "m")  # an edit of the JSON alone is caught by its checksum
+    doc["metadata_sha256"] = metadata_checksum(doc)  # re-signed: the shapes still disagree
+    js.write_text(json.dumps(doc))
     with pytest.raises(FileFormatError, match="needs"):
+        load_network(tmp_path / "m")
+
+
+@pytest.mark.parametrize(
+    ("key", "value", "message"),
+    [
+        (("domain", "mass_max"), 1000.0, "domain.mass_min/max"),  # widened, then re-signed
+        (("scaling", "height_scale"), 0.0, "scaling.height_scale"),
+        (("domain", "position_min"), 0.5, "need finite min < max"),
+    ],
+)
+def test_loaded_numbers_are_checked_even_when_re_signed(toy_network, tmp_path, key, value, message):
+    _, js = save_network(toy_network, tmp_path / "m")
+    doc = json.loads(js.read_text())
+    doc[key[0]][key[1]] = value
+    js.write_text(json.dumps(doc))
+    with pytest.raises(FileFormatError, match="fails its checksum"):
+        load_network(tmp_path / "m")
+    doc["metadata_sha256"] = metadata_checksum(doc)
+    js.write_text(json.dumps(doc))
+    with pytest.raises(FileFormatError, match=message):  # range checks behind the checksum
         load_network(tmp_path / "m")
 
 

@@ -37,6 +37,7 @@ __all__ = [
     "MODEL_FORMAT",
     "MODEL_FORMAT_VERSION",
     "load_network",
+    "metadata_checksum",
     "model_paths",
     "network_arrays",
     "network_from_files",
@@ -72,12 +73,33 @@ def write_model_files(
     buf = io.BytesIO()
     np.savez(buf, **{k: np.ascontiguousarray(v, dtype=np.float64) for k, v in arrays.items()})
     data = buf.getvalue()
-    doc = dict(metadata)
+    doc = {k: v for k, v in metadata.items() if k not in _CHECKSUMS}
     doc["weights_sha256"] = hashlib.sha256(data).hexdigest()
-    npz_path.parent.mkdir(parents=True, exist_ok=True)
-    npz_path.write_bytes(data)
-    json_path.write_text(json.dumps(doc, indent=2, allow_nan=False) + "\n", encoding="utf-8")
+    doc["metadata_sha256"] = metadata_checksum(doc)
+    from skisnow._atomic import atomic_write
+
+    # each file whole or not at all; the JSON last, so a pair is complete once the JSON exists
+    atomic_write(npz_path, data)
+    atomic_write(json_path, json.dumps(doc, indent=2, allow_nan=False) + "\n")
     return npz_path, json_path
+
+
+#: The checksum keys of a model's JSON document (not covered by the metadata checksum).
+_CHECKSUMS = ("metadata_sha256",)
+
+
+def metadata_checksum(doc: Mapping[str, Any]) -> str:
+    """sha256 of everything in the JSON document that defines the model (architecture,
+    scaling, trained domain, reference window, training record and the weights' own sha256):
+    its canonical JSON (sorted keys, no whitespace, strict floats). Editing any of it, e.g.
+    widening the trained domain, fails the check."""
+    body = {k: v for k, v in doc.items() if k not in _CHECKSUMS}
+    try:
+        text = json.dumps(body, sort_keys=True, separators=(",", ":"), allow_nan=False)
+    except ValueError:  # NaN/inf somewhere: never a document skisnow wrote
+        text = json.dumps(body, sort_keys=True, separators=(",", ":"))
+        return "nonfinite:" + hashlib.sha256(text.encode("utf-8")).hexdigest()
+    return hashlib.sha256(text.encode("utf-8")).hexdigest()
 
 
 def parse_model_bytes(
@@ -90,6 +112,18 @@ def parse_model_bytes(
         raise FileFormatError(f"{where}.json: not valid JSON ({exc})") from None
     if not isinstance(doc, dict):
         raise FileFormatError(f"{where}.json: expected a JSON object, got {type(doc).__name__}")
+    declared = doc.get("metadata_sha256")
+    # (a file of another format version is refused by its version, with its own message)
+    same_version = (
+        doc.get("format") == MODEL_FORMAT and doc.get("format_version") == MODEL_FORMAT_VERSION
+    )
+    if same_version and declared != metadata_checksum(doc):
+        raise FileFormatError(
+            f"{where}.json: the model's metadata fails its checksum (metadata_sha256 "
+            f"{'missing' if declared is None else 'differs'}): the file was edited or damaged "
+            "after it was written (architecture, scaling, trained domain and training record "
+            "are all covered). Retrain with `skisnow train`, or restore the file."
+        )
     expected = doc.get("weights_sha256")
     actual = hashlib.sha256(npz).hexdigest()
     if expected != actual:
@@ -199,6 +233,34 @@ def _members_from_arrays(
     return tuple(members)
 
 
+def _check_numbers(scaling: Any, domain: Any, where: str) -> None:
+    """Every loaded number finite and in range: scales > 0, a trained domain with min < max
+    inside what a ski and a bench can be (masses, positions, x in skisnow._checks' ranges)."""
+    from skisnow._checks import QUANTITIES
+
+    for key, value in asdict(scaling).items():
+        if not np.isfinite(value) or (key.endswith("_scale") and value <= 0):
+            raise FileFormatError(
+                f"{where}.json: scaling.{key} = {value!r}; every scaling value must be finite "
+                "and every *_scale > 0"
+            )
+    d = asdict(domain)
+    limits = {"mass": ("mass", 1.0), "position": ("load_position", 1e3), "x": ("x", 1e3)}
+    for prefix, (quantity, to_field) in limits.items():
+        lo, hi = d[f"{prefix}_min"], d[f"{prefix}_max"]
+        q = QUANTITIES[quantity]
+        p_lo, p_hi = q.plausible
+        if not (np.isfinite(lo) and np.isfinite(hi) and lo < hi):
+            raise FileFormatError(
+                f"{where}.json: domain.{prefix}_min/max = {lo!r}/{hi!r}; need finite min < max"
+            )
+        if lo * to_field < p_lo or hi * to_field > p_hi or (quantity == "mass" and lo <= 0):
+            raise FileFormatError(
+                f"{where}.json: domain.{prefix}_min/max = {lo!r}/{hi!r} lies outside the "
+                f"possible {q.name} ({q.describe_plausible()})"
+            )
+
+
 def network_from_files(
     arrays: Mapping[str, np.ndarray], doc: Mapping[str, Any], where: str
 ) -> CamberNetwork:
@@ -240,6 +302,7 @@ def network_from_files(
         raise FileFormatError(f"{where}: invalid metadata ({exc})") from None
     if n_members < 1:
         raise FileFormatError(f"{where}: n_members must be >= 1, got {n_members}")
+    _check_numbers(scaling, domain, where)
     status = doc.get("metadata", {}).get("status")
     if status is not None and status not in {s.value for s in SolverStatus}:
         raise FileFormatError(
