@@ -26,7 +26,8 @@ def test_read_profile_converts_units_and_resamples(tmp_path: Path) -> None:
 
 def test_read_profile_errors(tmp_path: Path) -> None:
     csv = tmp_path / "p.csv"
-    csv.write_text("x_mm,height_mm\n" + "\n".join(f"{100 * (10 - i)},{0.5 * i}" for i in range(10)) + "\n")
+    rows = "\n".join(f"{100 * (10 - i)},{0.5 * i}" for i in range(10))
+    csv.write_text("x_mm,height_mm\n" + rows + "\n")
     with pytest.raises(FileFormatError, match="line 3, column x_mm: x_mm must increase"):
         read_profile(csv)
     with pytest.raises(FileFormatError, match="no such"):
