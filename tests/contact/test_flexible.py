@@ -174,6 +174,33 @@ def test_balance_and_complementarity(
     # through the identity Σ (x − x_m) q dx = 0 (moment) and Σ q dx = W (force) above
 
 
+@pytest.mark.parametrize(("name", "mass", "xm", "e_snow"), [
+    ("classic", 30.0, -0.12, None), ("skate", 30.0, -0.12, 100e6), ("classic", 60.0, -0.07, 20e6),
+])  # fmt: skip
+def test_candidate_iteration_gives_the_whole_grid_answer(
+    name: str, mass: float, xm: float, e_snow: float | None
+) -> None:
+    # the candidate cells with dense blocks (used at >= 1024 stations) against the whole grid;
+    # the pressure is fixed to ~1e4 × the gap tolerance, so both are solved to 1e-11
+    ski = get_ski(name)
+    e = effective_modulus(snow(e_snow)) if e_snow else 1.953e9
+    out = [
+        solve_flexible_ski(
+            ski,
+            load=mass * STANDARD_GRAVITY,
+            load_position=xm,
+            modulus=e,
+            n_points=2048,
+            candidates=c,
+            tol=1e-11,
+        )
+        for c in (True, False)
+    ]
+    a, b = (s.contact for s in out)
+    assert np.array_equal(a.contact, b.contact)
+    assert np.abs(a.pressure - b.pressure).max() <= 1e-6 * b.pressure.max()
+
+
 def test_refinement_converges() -> None:
     ski = get_ski("classic")
     e = effective_modulus(snow(20e6))

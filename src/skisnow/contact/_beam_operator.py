@@ -97,6 +97,33 @@ class CantileverCompliance:
                 out[..., half.index] = half.apply(f[..., half.index])
         return out
 
+    def block(self, cells: np.ndarray) -> np.ndarray:
+        """The dense block K_beam[cells, cells] [m/N] (rows and columns of the stations
+        ``cells``): G_ij = Σ_{t_k < min(d_i, d_j)} c_k (d_i − t_k)(d_j − t_k), from three
+        cumulative sums; zero between the two halves."""
+        cells = np.asarray(cells, dtype=np.intp)
+        out = np.zeros((cells.size, cells.size))
+        for half in (self.rear, self.front):
+            if not half.index.size:
+                continue
+            pos_of = np.full(self.x.size, -1, dtype=np.intp)
+            pos_of[half.index] = np.arange(half.index.size)
+            pos = pos_of[cells]
+            sel = np.flatnonzero(pos >= 0)
+            if not sel.size:
+                continue
+            ps = pos[sel]
+            d = half.d[ps]
+            s0 = np.cumsum(half.c)[:-1]
+            s1 = np.cumsum(half.c * half.t)[:-1]
+            s2 = np.cumsum(half.c * half.t * half.t)[:-1]
+            mn = np.minimum.outer(ps, ps)
+            g = np.multiply.outer(d, d) * s0[mn]
+            g -= np.add.outer(d, d) * s1[mn]
+            g += s2[mn]
+            out[np.ix_(sel, sel)] = g
+        return out
+
     def boot_deflection(self, force: float, boot_length: float) -> np.ndarray:
         """Deflection [m] of the stations under the boot: ``force`` [N] downward, uniform over
         ``boot_length`` [m] centred on the clamp (0 for a point force at the clamp).

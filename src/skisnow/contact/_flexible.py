@@ -218,6 +218,7 @@ def solve_flexible(
     tol: float = 1e-8,
     max_iter: int = 5000,
     initial_pressure: ArrayLike | None = None,
+    candidates: bool | None = None,
     edge_contact: Literal["error", "allow"] = "error",
     raise_on_failure: bool = True,
     workers: int | None = None,
@@ -256,6 +257,11 @@ def solve_flexible(
         relative to the camber range plus the largest displacement, ≤ tol; iteration limit.
     initial_pressure
         A start (e.g. the previous load step's pressure) on the same grid [Pa].
+    candidates
+        Iterate on the candidate contact cells only (strip model, half-space, ≥ 1024 stations:
+        the default), with the dense blocks K_snow,SS + K_beam,SS; the gap is then checked on
+        the whole grid and missed cells added, so the answer is that of the whole-grid
+        iteration (``False``) to the tolerance.
     edge_contact
         ``'error'``: raise :class:`UnsupportedLoadError` when the contact reaches an end of the
         ski (it would tip over that end); ``'allow'``: return it.
@@ -362,15 +368,46 @@ def solve_flexible(
             p0 = p0 if ok else None
     if p0 is None:
         p0 = rigid_start(hf, xif, total, True, snow_op.self_influence, len(shape))
-    p, _g, a, b, iters, hist, converged, message, n_conv = _active_set_cg(
-        lambda v: op(v.reshape(shape)).ravel(),
-        lambda v: inverse(v.reshape(shape)).ravel(),
-        hf,
-        xif,
-        p0,
-        tol=float(tol),
-        max_iter=int(max_iter),
-    )
+    if candidates is None:
+        candidates = model == "strip" and foundation == "half-space" and not rigid
+        candidates = candidates and xs.size >= _CANDIDATE_MIN_CELLS
+    result = None
+    if candidates:
+        # a few whole-grid steps shrink the start's support (the rigid-hull start spreads over
+        # far more cells than a bending ski touches), then the candidate iteration takes over
+        apply_full = lambda v: op(v.reshape(shape)).ravel()  # noqa: E731
+        precond_full = lambda v: inverse(v.reshape(shape)).ravel()  # noqa: E731
+        pre = _active_set_cg(apply_full, precond_full, hf, xif, p0, tol=float(tol),
+                             max_iter=_CANDIDATE_WARMUP)  # fmt: skip
+        if pre[6]:
+            result = pre
+        else:
+            result = _on_candidates(op, inverse, hf, xif, pre[0], tol=float(tol),
+                                    max_iter=int(max_iter) - pre[4])  # fmt: skip
+            if result is None:  # too many candidates: go on on the whole grid from there
+                result = _active_set_cg(
+                    apply_full,
+                    precond_full,
+                    hf,
+                    xif,
+                    pre[0],
+                    tol=float(tol),
+                    max_iter=int(max_iter) - pre[4],
+                )
+            p_, g_, a_, b_, it_, hist_, conv_, msg_, nap_ = result
+            result = (p_, g_, a_, b_, it_ + pre[4], pre[5] + hist_, conv_, msg_,
+                      nap_ + pre[8])  # fmt: skip
+    if result is None:
+        result = _active_set_cg(
+            lambda v: op(v.reshape(shape)).ravel(),
+            lambda v: inverse(v.reshape(shape)).ravel(),
+            hf,
+            xif,
+            p0,
+            tol=float(tol),
+            max_iter=int(max_iter),
+        )
+    p, _g, a, b, iters, hist, converged, message, n_conv = result
     pressure = p.reshape(shape)
     u_snow = snow_op(pressure)
     w_beam = op.beam_part(pressure)
@@ -638,3 +675,88 @@ def _active_set_cg(
     g = kp + h
     a, b = plane_fit(g, xi, free)
     return p, g, a, b, iterations, history, converged, message, n_apply
+
+
+#: grids shorter than this are solved whole; candidate sets larger than _CANDIDATE_MAX (or
+#: than _CANDIDATE_FRACTION of the grid) too: a dense block costs more than the FFT there
+_CANDIDATE_MIN_CELLS = 1024
+_CANDIDATE_MAX = 700
+_CANDIDATE_FRACTION = 0.5
+#: candidates: cells whose estimated gap is below this fraction of the largest snow
+#: displacement (the whole-grid check afterwards adds any cell that was missed)
+_CANDIDATE_MARGIN = 0.2
+#: whole-grid steps before the candidate iteration
+_CANDIDATE_WARMUP = 6
+
+
+def _on_candidates(
+    op: _CoupledOperator,
+    inverse: Convolution,
+    h: np.ndarray,
+    xi: np.ndarray,
+    p0: np.ndarray,
+    *,
+    tol: float,
+    max_iter: int,
+) -> tuple[np.ndarray, np.ndarray, float, float, int, list[float], bool, str, int] | None:
+    """:func:`_active_set_cg` on the candidate contact cells S of a strip grid.
+
+    As p = 0 off S, the iteration on S with the dense blocks K_SS (snow Toeplitz rows plus the
+    beam's block) and the snow preconditioner restricted to S is the whole-grid iteration as long
+    as no cell off S enters the contact. The gap is checked on the whole grid afterwards (one
+    application of the full operator); cells that penetrate are added, with every cell whose gap
+    is below the margin, and the iteration resumes from the pressure found. Returns None when the
+    candidates are too many for a dense block (then the caller iterates on the whole grid).
+    """
+    from skisnow.contact._operators import RestrictedOperator
+
+    snow = op.snow
+    assert isinstance(snow, Convolution)
+    n = h.size
+    p = np.array(p0, dtype=np.float64)
+    n_apply = 0
+    iterations, history = 0, []
+
+    def full_gap(p: np.ndarray) -> tuple[np.ndarray, float]:
+        nonlocal n_apply
+        u_s = snow(p)
+        g = u_s + op.beam(p * op.cell_area) + h
+        n_apply += 1
+        a, b = plane_fit(g, xi, p > 0)
+        return g - a - b * xi, float(np.abs(u_s).max()) + 1e-300
+
+    gap, u_max = full_gap(p)
+    cand = (p > 0) | (gap < _CANDIDATE_MARGIN * u_max)
+    for _ in range(6):
+        cells = np.flatnonzero(cand)
+        if cells.size > min(_CANDIDATE_MAX, _CANDIDATE_FRACTION * n) or cells.size < 2:
+            return None
+        rest = RestrictedOperator.build(snow, cells, dense=True)
+        assert rest.matrix is not None
+        k_ss = rest.matrix + op.beam.block(cells) * op.cell_area
+        m_ss = rest.preconditioner(inverse).matrix
+        assert m_ss is not None
+        ps, _, a, b, it, hist, converged, message, nap = _active_set_cg(
+            lambda v: k_ss @ v,  # noqa: B023 (used within this pass)
+            lambda v: m_ss @ v,  # noqa: B023
+            h[cells],
+            xi[cells],
+            p[cells],
+            tol=tol,
+            max_iter=max_iter - iterations,
+        )
+        iterations += it
+        history += hist
+        n_apply += nap
+        p = np.zeros(n)
+        p[cells] = ps
+        if not converged:
+            return None
+        gap, u_max = full_gap(p)
+        scale = float(np.ptp(h)) + u_max
+        missed = (p == 0.0) & (gap < -tol * scale)
+        if not missed.any():
+            g = gap + plane_fit(gap, xi, p > 0)[0]  # (only δ, θ are used by the caller)
+            return p, g, a, b, iterations, history, True, message, n_apply
+        cand |= missed | (gap < _CANDIDATE_MARGIN * u_max)
+    return None
