@@ -24,8 +24,10 @@ conjugate gradient with proportioning (Dostál's MPRGP), not Polonsky & Keer's (
 adds a few very large long-wave eigenvalues, and PK's rescaling of p after a clipped step then
 stalls on some cambers (measured: 5000 iterations without converging on random skis of the
 property tests); here every step lowers the energy and a projected search drops many cells at
-once, so the flexible solve takes about as many iterations as the rigid one (25–40 on the
-shipped skis at 4096 stations).
+once, so the flexible solve takes about as many iterations as the rigid one (15–35 on the
+shipped skis at 4096 stations). As in the rigid solver, 1D grids are iterated on the candidate
+contact cells (dense blocks of both operators) once a few whole-grid steps have shrunk the start,
+and the gap is checked on the whole grid afterwards.
 
 The Winkler (local) foundation, p = k·u_snow, replaces the half-space for the checks against
 Hetényi's (1946) free beam on an elastic foundation (:func:`~skisnow.contact.reference.\
