@@ -88,8 +88,8 @@ def test_bad_ski_file_is_one_line(tmp_path: Path, capsys: pytest.CaptureFixture[
     bad.write_text('{"format": "skisnow-ski", "format_version": 1, "kind": "alpine"}')
     argv = ["contact", "--ski", str(bad), "--mass-kg", "30", "--load-position-mm", "-120",
             "--snow-modulus-mpa", "100"]  # fmt: skip
-    assert main(argv) == 1
+    assert main(argv) == 2  # an input error
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and "FileFormatError" in err
-    assert main(["skis", "--show", "nothing"]) == 1
+    assert main(["skis", "--show", "nothing"]) == 2
     assert "neither a shipped ski" in capsys.readouterr().err

@@ -131,5 +131,5 @@ def test_cli_identify(bench, tmp_path: Path, capsys: pytest.CaptureFixture[str])
     doc = json.loads(capsys.readouterr().out)
     assert doc["load_cases"] == 4 and doc["criterion"] == "given"
     assert read_ski(out).name == "classic (identified)"
-    assert main(["identify", str(src), "--out", str(tmp_path / "x.csv")]) == 1
+    assert main(["identify", str(src), "--out", str(tmp_path / "x.csv")]) != 0
     assert "ski file (.json)" in capsys.readouterr().err

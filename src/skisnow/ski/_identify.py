@@ -47,7 +47,7 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.interpolate import BSpline
 from scipy.linalg import solveh_banded
-from scipy.optimize import least_squares
+from scipy.optimize import least_squares, minimize_scalar
 from scipy.sparse import csr_matrix
 
 from skisnow._errors import ConvergenceError, InputError
@@ -387,6 +387,21 @@ class IdentificationResult:
 # --------------------------------------------------------------------------- entry point
 
 
+def _zero_load_profile(cases: list[_Case]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """A start for z0: the two lightest profiles at the load position with the most profiles,
+    extrapolated linearly to zero load station by station (the deflection grows about linearly
+    with the load while the contact set changes little; the rigid part is the gauge)."""
+    positions = [c.position for c in cases]
+    pos = max(set(positions), key=positions.count)
+    at = sorted((c for c in cases if c.position == pos), key=lambda c: c.mass)
+    if len(at) < 2:
+        light = min(cases, key=lambda c: c.mass)
+        return light.x, light.h
+    a, b = at[0], at[1]
+    hb = np.interp(a.x, b.x, b.h)
+    return a.x, a.h - a.mass * (hb - a.h) / (b.mass - a.mass)
+
+
 def _bench_cases(bench: Any, name: str) -> list[tuple[float, float, NDArray, NDArray]]:
     t = bench.table[bench.table["ski"] == name]
     out = []
@@ -457,7 +472,8 @@ def identify_ski(
     regularisation
         λ; default chosen by GCV over ``lambdas``.
     initial
-        A starting ski; default a constant EI of 1000 N m² and z0 from the lightest profile.
+        A starting ski; default z0 from the two lightest profiles extrapolated to zero load
+        and the constant EI that fits best on it.
     max_nfev
         Evaluation limit of each least-squares fit.
     continuation
@@ -546,13 +562,25 @@ def identify_ski(
         )[0]
         z_start_x, z_start = nodes, initial.free_camber(nodes)
     else:
-        theta_e0 = np.full(n_stiffness, np.log(1000.0))
-        light = min(range(len(cases)), key=lambda k: cases[k].mass)
-        z_start_x, z_start = cases[light].x, cases[light].h
+        z_start_x, z_start = _zero_load_profile(cases)
     # full-basis fit, then drop its linear part (invisible to the bench): Q is orthonormal
     a_z = _design(problem.t_z, z_start_x)
     c_z = np.linalg.lstsq(a_z, z_start, rcond=None)[0]
     phi0 = problem.q_z.T @ c_z
+    if initial is None:
+        # a constant EI: the best on this z0, by a bounded scalar search of log EI
+        def misfit(log_ei: float) -> float:
+            r, _ = problem.evaluate(
+                np.concatenate([np.full(n_stiffness, log_ei), phi0]), jacobian=False
+            )
+            return float(r @ r)
+
+        best_log = minimize_scalar(
+            misfit, bounds=(np.log(30.0), np.log(3e4)), method="bounded",
+            options={"xatol": 0.02},
+        ).x  # fmt: skip
+        theta_e0 = np.full(n_stiffness, float(best_log))
+        say(f"start: constant EI {np.exp(best_log):.0f} N m², z0 extrapolated to zero load")
     p = np.concatenate([theta_e0, phi0])
 
     # EI between 1 and 1e6 N m² (a ski is 100-10000): keeps the trust region off overflow
