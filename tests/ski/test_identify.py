@@ -70,12 +70,12 @@ def test_jacobian_is_the_derivative_of_the_residuals(bench) -> None:
     assert checked >= 20
 
 
-def test_the_fit_stays_at_the_truth_and_bands_cover_it(bench) -> None:
+def test_the_fit_stays_at_the_truth_with_bands(bench) -> None:
     # Consistency: started at the true ski, the noisy bench does not pull the estimate away —
     # EI within 5 % rms between the glide zones, misfit at the noise, the noise estimated from
     # the data, z0 (modulo the rigid line the bench cannot see) within its bands.
     true = get_ski("classic")
-    res = ident.identify_ski(bench, initial=true, lambdas=(1e3,), max_nfev=20)
+    res = ident.identify_ski(bench, initial=true, lambdas=(1e3,), max_nfev=10, continuation=())
     ski = res.ski
     assert res.noise == pytest.approx(NOISE, rel=0.1)
     assert res.residual_rms < 1.3 * NOISE
@@ -100,7 +100,7 @@ def test_identified_ski_is_a_valid_file(bench, tmp_path: Path) -> None:
     from skisnow.ski import write_ski
 
     res = ident.identify_ski(bench, initial=get_ski("classic"), lambdas=(1e3,), max_nfev=2,
-                             name="my classic")  # fmt: skip
+                             name="my classic", continuation=())  # fmt: skip
     path = write_ski(res.ski, tmp_path / "id.json")
     back = read_ski(path)
     assert back == res.ski and back.name == "my classic"
@@ -126,7 +126,7 @@ def test_cli_identify(bench, tmp_path: Path, capsys: pytest.CaptureFixture[str])
     src = write_bench(bench, tmp_path / "b.csv")
     out = tmp_path / "ski.json"
     code = main(["identify", str(src), "--out", str(out), "--regularisation", "1000",
-                 "--n-camber", "40", "--json"])  # fmt: skip
+                 "--n-camber", "40", "--max-nfev", "3", "--json"])  # fmt: skip
     assert code == 0
     doc = json.loads(capsys.readouterr().out)
     assert doc["load_cases"] == 4 and doc["criterion"] == "given"

@@ -43,6 +43,9 @@ def identify(
     n_camber: Annotated[
         int, typer.Option("--n-camber", help="Spline coefficients of z0(x).")
     ] = 100,
+    max_nfev: Annotated[
+        int, typer.Option("--max-nfev", help="Evaluation limit of each least-squares fit.")
+    ] = 60,
     figure: Annotated[
         Path | None,
         typer.Option("--figure", help="Save the passport figure (png/svg/pdf by suffix)."),
@@ -71,6 +74,7 @@ def identify(
         regularisation=regularisation,
         n_stiffness=n_stiffness,
         n_camber=n_camber,
+        max_nfev=max_nfev,
         progress=say,
         source=str(bench_file),
     )
