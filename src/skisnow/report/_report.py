@@ -166,10 +166,12 @@ def build_report(study: Any, *, cycles: Sequence[Any] = (), fleet: Any = None) -
     when several skis are compared. Each adds its section.
     """
     from skisnow import __version__
+    from skisnow.report._passport import passport_section
     from skisnow.report._workflows import cycle_section, fleet_section
 
     name = study.ski.name
-    sections = [_metrics_section(study), _standard_loads(study), _maps_section(study)]
+    sections = [_metrics_section(study), passport_section(study.ski), _standard_loads(study),
+                _maps_section(study)]  # fmt: skip
     sections += [cycle_section(ds) for ds in cycles]
     if fleet is not None:
         sections.append(fleet_section(fleet))
