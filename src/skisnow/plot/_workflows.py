@@ -113,13 +113,14 @@ def plot_cycle(ds: Any) -> Figure:
                 axes[2, 0].plot(t, z["max_pressure"].values * 1e-3, color=c, ls=":", label="peak")
             else:
                 axes[3, 0].plot(t, z["load_share"].values, color=c, label=name)
-        kick = ds.sel(zone="kick")["load_share"].values
-        axes[3, 0].plot(t, kick, color="k", ls="--", label="between kick marks")
+        kick = ds.sel(zone="kick")
+        axes[1, 0].plot(t, kick["length"].values * 1e3, color="k", ls="--", label="kick marks")
+        axes[3, 0].plot(t, kick["load_share"].values, color="k", ls="--", label="kick marks")
         axes[1, 0].set_ylabel("contact length [mm]")
         axes[2, 0].set_ylabel("pressure [kPa]")
         axes[3, 0].set_ylabel("load share")
         axes[3, 0].set_xlabel("time [s]")
-        axes[1, 0].legend(loc="upper right", ncols=4)
+        axes[1, 0].legend(loc="upper right", ncols=5)
         axes[3, 0].legend(loc="upper right", ncols=4)
         for row in axes[:, 0]:
             _shade(row, t, touch)
