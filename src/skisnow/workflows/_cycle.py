@@ -14,7 +14,7 @@ Frames carrying less than :data:`UNLOADED_MASS` are the ski in the air or glidin
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import Literal
+from typing import TYPE_CHECKING, Literal
 
 import numpy as np
 
@@ -22,6 +22,9 @@ from skisnow._errors import InputError, UnsupportedLoadError
 from skisnow.workflows._history import LoadHistory, check_positions
 from skisnow.workflows._skis import FleetSki, resolve_ski
 from skisnow.workflows._solve import choose_route, loaded_profiles, solve_loaded, stations
+
+if TYPE_CHECKING:
+    import xarray as xr
 
 __all__ = ["UNLOADED_MASS", "ZONES", "kick_contact_summary", "run_cycle"]
 
@@ -54,7 +57,7 @@ def run_cycle(
     warm_start: bool = True,
     ski_model: Literal["rigid", "flexible"] = "rigid",
     progress: Callable[[int, int], None] | None = None,
-):
+) -> xr.Dataset:
     """Contact of one ski over a load history → an :class:`xarray.Dataset` over time.
 
     Parameters
@@ -232,7 +235,7 @@ def _runs(mask: np.ndarray) -> list[tuple[int, int]]:
     return list(zip(np.flatnonzero(d == 1), np.flatnonzero(d == -1) - 1, strict=True))
 
 
-def kick_contact_summary(ds) -> dict[str, float | int]:
+def kick_contact_summary(ds: xr.Dataset) -> dict[str, float | int]:
     """When and for how long the grip wax touches the snow over the cycle.
 
     Each frame stands for the time interval around it (half-way to its neighbours), so the

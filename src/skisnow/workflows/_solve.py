@@ -10,12 +10,15 @@ as along a stride), the choice of the profile route, and warm starts along a seq
 from __future__ import annotations
 
 import warnings
-from typing import Literal
+from typing import TYPE_CHECKING, Literal
 
 import numpy as np
 
 from skisnow._errors import DomainWarning, InputError
 from skisnow.workflows._skis import FleetSki
+
+if TYPE_CHECKING:
+    from skisnow.pipeline import Case
 
 __all__ = ["ProfileRoute", "choose_route", "loaded_profiles", "solve_loaded", "stations"]
 
@@ -120,7 +123,7 @@ def solve_loaded(
     snow_modulus: float,
     route: ProfileRoute | Literal["flexible"],
     start: np.ndarray | None = None,
-):
+) -> Case:
     """One case on snow of modulus E [Pa] (``start`` warm-starts the contact iteration).
 
     ``route`` ``'network'``/``'beam'``: the rigid loaded profile ``height`` through
