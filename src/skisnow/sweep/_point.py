@@ -16,6 +16,8 @@ workers); beam profiles are cached per process by :mod:`skisnow.pipeline`.
 
 from __future__ import annotations
 
+from typing import Any
+
 import numpy as np
 
 from skisnow._errors import UnsupportedLoadError
@@ -55,18 +57,20 @@ def solve_point(
     *,
     initial_pressure: np.ndarray | None = None,
     profile: tuple[np.ndarray, np.ndarray] | None = None,
+    ski: Any = None,
 ):
     """One point of a sweep as a :class:`skisnow.pipeline.Case` (SI units), solved by
     :func:`skisnow.pipeline.solve_case` with the settings of ``spec``.
 
     ``profile`` (x, h) [m] skips computing the loaded profile; ``initial_pressure`` warm-starts
-    the contact iteration. Raises :class:`UnsupportedLoadError` where the profile cannot carry
-    the load.
+    the contact iteration; ``ski``, the :class:`~skisnow.ski.Ski` of ``ski_name`` if already
+    resolved (a chunk resolves it once, not per mass). Raises :class:`UnsupportedLoadError`
+    where the profile cannot carry the load.
     """
     from skisnow.pipeline import solve_case
 
     return solve_case(
-        spec.ski(ski_name),
+        spec.ski(ski_name) if ski is None else ski,
         mass=float(mass),
         load_position=float(load_position),
         snow_modulus=float(snow_modulus),
@@ -113,6 +117,7 @@ def contact_chunk(
     out["residual"] = np.full(n_m, np.nan)
     out["converged"] = np.zeros(n_m, dtype=bool)
     previous: np.ndarray | None = None
+    ski = spec.ski(ski_name)  # once per chunk: a shipped ski's file check or a ski file's parse
     for a, mass in enumerate(spec.masses):
         try:
             profile = None if not profiles else (profiles["x"], profiles["height"][a])
@@ -124,6 +129,7 @@ def contact_chunk(
                 snow_modulus,
                 initial_pressure=previous,
                 profile=profile,
+                ski=ski,
             )
         except UnsupportedLoadError:
             previous = None
