@@ -183,3 +183,22 @@ def test_ski_files_enter_the_fleet(tmp_path: Path) -> None:
         assert copy[key] == pytest.approx(plain[key], rel=1e-12)
     # a stiffer ski closes its pocket later and stands on shorter glide zones
     assert stiffer["closing_load_kg"] > plain["closing_load_kg"]
+
+
+@pytest.mark.slow
+def test_a_bench_file_enters_through_identification(tmp_path: Path) -> None:
+    """Round trip: the virtual bench of the shipped skate (4 masses, 5 µm noise) → identified
+    ski → contact within 5 % of the true ski's (the identification's own target)."""
+    from skisnow.io import write_bench
+    from skisnow.ski import run_bench
+
+    bench = run_bench(
+        "skate", masses=(20.0, 40.0, 60.0, 80.0), load_positions=(-0.12,), noise=5e-6, seed=1
+    )
+    path = write_bench(bench, tmp_path / "skate_bench.csv")
+    cmp = compare_fleet(["skate", str(path)], body_mass=70, snow_modulus=100e6, n_points=1024)
+    assert not cmp.failures
+    true, ident = cmp.records()
+    assert ident["origin"] == "bench file (identified)" and ident["profile_route"] == "beam"
+    for key in ("full_total_length_mm", "full_total_mean_pressure_kpa", "half_total_length_mm"):
+        assert ident[key] == pytest.approx(true[key], rel=0.05)

@@ -39,8 +39,9 @@ class FleetSki:
 def resolve_ski(spec: str | Ski | FleetSki) -> FleetSki:
     """Turn a shipped name, a ski file or a bench file into a :class:`FleetSki`.
 
-    A bench file (``.csv``/``.parquet`` camber-bench table) enters through the identification
-    of its EI(x) and z0(x) (``skisnow.ski.identify_ski``) where this version has it.
+    A bench file (``.csv``/``.parquet`` camber-bench table of one ski) enters through the
+    identification of its EI(x) and z0(x) from the whole bench sequence
+    (:func:`skisnow.ski.identify_ski`; about a minute on a 2-core machine).
 
     Raises
     ------
@@ -59,17 +60,18 @@ def resolve_ski(spec: str | Ski | FleetSki) -> FleetSki:
             f"{spec}: neither a shipped ski ({', '.join(SHIPPED_SKIS)}) nor an existing file"
         )
     if path.suffix.lower() in _BENCH_SUFFIXES:
-        import skisnow.ski as ski_pkg
         from skisnow.io import read_bench
+        from skisnow.ski import identify_ski
 
         bench = read_bench(path)
-        identify = getattr(ski_pkg, "identify_ski", None)
-        if identify is None:
+        if len(bench.skis) != 1:
             raise InputError(
-                f"{path}: a bench file enters a fleet through the identification of its "
-                "stiffness and camber, which this version of skisnow does not have"
+                f"{path}: the bench holds {len(bench.skis)} skis ({', '.join(bench.skis)}); give "
+                "one bench file per ski of the fleet"
             )
-        return FleetSki(label=path.name, ski=identify(bench), origin="bench file (identified)")
+        # EI(x) and z0(x) identified from the whole bench sequence (skisnow.ski.identify_ski)
+        result = identify_ski(bench, source=str(path))
+        return FleetSki(label=path.name, ski=result.ski, origin="bench file (identified)")
     ski = get_ski(str(path))
     # a file holding a shipped ski unchanged may use that ski's camber network
     shipped = ski.name if ski.name in SHIPPED_SKIS and get_ski(ski.name) == ski else None
