@@ -67,7 +67,7 @@ __all__ = ["IdentificationResult", "identify_ski"]
 
 #: Default λ grid of the GCV search (penalty on second differences of log-EI coefficients, in
 #: units of the σ-normalised misfit).
-DEFAULT_LAMBDAS: tuple[float, ...] = (1e5, 1e4, 1e3, 1e2, 1e1)
+DEFAULT_LAMBDAS: tuple[float, ...] = (1e4, 1e3, 1e2, 1e1)
 _Z_REF = 1e-3  # [m]: scale of the z0 smoothness term
 _LAMBDA_Z = 1.0
 _LAMBDA_1 = 1.0
@@ -190,7 +190,9 @@ class _Problem:
         q, _ = np.linalg.qr(lin, mode="complete")
         self.q_z = q[:, 2:]  # (n_z, n_z - 2), orthogonal to linear coefficient vectors
         self.lin_z = lin
+        self.q_z_nodes = self.phi_z_nodes @ self.q_z
         self.phi_z_cases = [_design(self.t_z, c.x) for c in cases]
+        self.q_z_cases = [phi @ self.q_z for phi in self.phi_z_cases]  # ∂z0(x̄)/∂φ per case
         self.d2_e = _second_differences(n_stiffness)
         self.d2_z = _second_differences(n_camber) / _Z_REF
         self.n_params = n_stiffness + n_camber - 2
@@ -304,7 +306,7 @@ class _Problem:
             v = solveh_banded(ab, g_mat, check_finite=False)  # K^-1 dK u  (2n, nE)
             rhs_e = np.zeros((na + 2, self.n_e))
             rhs_e[:na] = v[2 * act]
-            phi_za = self.phi_z_nodes[act] @ self.q_z  # (na, nφ)
+            phi_za = self.q_z_nodes[act]  # (na, nφ)
             rhs_z = np.zeros((na + 2, self.n_z - 2))
             rhs_z[:na] = -phi_za
             sol = np.linalg.lstsq(kkt, np.concatenate([rhs_e, rhs_z], axis=1), rcond=None)[0]
@@ -312,7 +314,7 @@ class _Problem:
             du = flex_full[:, act] @ dr  # (2n, nP)
             du[:, : self.n_e] -= v
             dh = c.hermite @ du + da[None, :] + c.x[:, None] * db[None, :]
-            dh[:, self.n_e :] += self.phi_z_cases[k] @ self.q_z
+            dh[:, self.n_e :] += self.q_z_cases[k]
             jac_parts.append((c.w / self.sigma)[:, None] * dh)
         res = np.concatenate(res_parts)
         jac = np.concatenate(jac_parts) if jacobian else None
@@ -475,7 +477,8 @@ def identify_ski(
         A starting ski; default z0 from the two lightest profiles extrapolated to zero load
         and the constant EI that fits best on it.
     max_nfev
-        Evaluation limit of each least-squares fit.
+        Evaluation limit of the first least-squares fit (a third of it for each further λ,
+        warm-started).
     continuation
         Fractions of the bench's masses fitted first, in turn (lightest first).
     progress
@@ -587,7 +590,9 @@ def identify_ski(
     lower = np.concatenate([np.full(n_stiffness, -10.0), np.full(n_camber - 2, -np.inf)])
     upper = np.concatenate([np.full(n_stiffness, 25.0), np.full(n_camber - 2, np.inf)])
 
-    def fit(p0: NDArray[np.float64], lam: float, subset: list[int] | None = None):
+    def fit(
+        p0: NDArray[np.float64], lam: float, subset: list[int] | None = None, nfev: int = max_nfev
+    ):
         pen = problem.penalty_matrix(lam)
 
         def fun(pp):
@@ -599,7 +604,7 @@ def identify_ski(
             return np.concatenate([j, pen], axis=0)
 
         sol = least_squares(
-            fun, p0, jac=jac, method="trf", bounds=(lower, upper), max_nfev=max_nfev,
+            fun, p0, jac=jac, method="trf", bounds=(lower, upper), max_nfev=nfev,
             x_scale="jac",
         )  # fmt: skip
         if subset is not None:
@@ -629,8 +634,10 @@ def identify_ski(
         if 2 <= len(subset) < len(cases):
             p = fit(p, grid[0], subset).x
             say(f"continuation: load cases up to {m_max:g} kg fitted")
-    for lam in grid:
-        sol, gcv, rss, edf, a_inv, jtj, r = fit(p, lam)
+    for i_lam, lam in enumerate(grid):
+        # each further λ starts from the previous fit: a third of the evaluations
+        nfev = max_nfev if i_lam == 0 else max(10, max_nfev // 3)
+        sol, gcv, rss, edf, a_inv, jtj, r = fit(p, lam, nfev=nfev)
         records.append((lam, gcv, float(np.sqrt(rss / problem.n_data)), edf))
         fits.append((sol, a_inv, jtj, r))
         p = sol.x
