@@ -9,7 +9,15 @@ import typer
 
 from skisnow._errors import InputError
 from skisnow.cli._app import app, report_converged, report_domain_warnings
-from skisnow.cli._render import console, emit_json, err_console, print_table
+from skisnow.cli._render import (
+    JsonOption,
+    ProfileSourceOption,
+    SkiModelOption,
+    console,
+    emit_json,
+    err_console,
+    print_table,
+)
 from skisnow.materials import BASE
 from skisnow.pipeline import DEFAULT_N_POINTS, MODELS, PROFILE_SOURCES, SKI_MODELS
 
@@ -68,22 +76,8 @@ def contact(
             "width is used.",
         ),
     ] = None,
-    ski_model: Annotated[
-        str,
-        typer.Option(
-            "--ski-model",
-            help="rigid (the paper's method: the profile loaded on the stone pressed into the "
-            "snow) or flexible (the ski's beam bends on the snow; needs --ski, no network).",
-        ),
-    ] = "rigid",
-    profile_source: Annotated[
-        str,
-        typer.Option(
-            "--profile-source",
-            help="With --ski: network (shipped pretrained), beam (virtual ski), or auto "
-            "(default: network for a shipped ski, beam for a ski file).",
-        ),
-    ] = "auto",
+    ski_model: SkiModelOption = "rigid",
+    profile_source: ProfileSourceOption = "auto",
     base_modulus_mpa: Annotated[
         float, typer.Option("--base-modulus-mpa", help="Ski base modulus in MPa (eq. 2).")
     ] = BASE.modulus / 1e6,
@@ -97,9 +91,7 @@ def contact(
     n_across: Annotated[
         int, typer.Option("--n-across", help="Cells across the width (surface model).")
     ] = 16,
-    json_out: Annotated[
-        bool, typer.Option("--json", help="Print one JSON document to stdout, nothing else.")
-    ] = False,
+    json_out: JsonOption = False,
     figure: Annotated[
         Path | None, typer.Option("--figure", help="Save a figure (png/svg/pdf by suffix).")
     ] = None,

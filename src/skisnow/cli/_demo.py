@@ -9,7 +9,7 @@ import typer
 
 from skisnow._errors import FileFormatError, InputError
 from skisnow.cli._app import app
-from skisnow.cli._render import console, emit_json
+from skisnow.cli._render import JsonOption, SkiModelOption, console, emit_json
 
 __all__ = ["run_contact_demo", "run_ski_demo"]
 
@@ -163,18 +163,11 @@ def run_contact_demo(
 @app.command()
 def demo(
     out: Annotated[Path, typer.Option("--out", help="Output directory.")] = Path("skisnow-output"),
-    json_out: bool = typer.Option(False, "--json", help="Print one JSON document, nothing else."),
+    json_out: JsonOption = False,
     workers: Annotated[
         int, typer.Option("--workers", help="Dask workers for the maps' sweep (0: in process).")
     ] = 0,
-    ski_model: Annotated[
-        str,
-        typer.Option(
-            "--ski-model",
-            help="rigid (the paper's method, default) or flexible (the ski's beam bends on the "
-            "snow).",
-        ),
-    ] = "rigid",
+    ski_model: SkiModelOption = "rigid",
 ) -> None:
     """Run the end-to-end demo on the shipped skis and say where the files went."""
     import time

@@ -5,11 +5,33 @@ from __future__ import annotations
 import json
 import math
 from collections.abc import Mapping, Sequence
-from typing import Any
+from typing import Annotated, Any
 
 import numpy as np
+import typer
 from rich.console import Console
 from rich.table import Table
+
+#: Options several commands share (one wording, one default): ``name: JsonOption = False``.
+JsonOption = Annotated[
+    bool, typer.Option("--json", help="Print one JSON document to stdout, nothing else.")
+]
+ProfileSourceOption = Annotated[
+    str,
+    typer.Option(
+        "--profile-source",
+        help="Loaded profile: network (shipped pretrained), beam (virtual ski), or auto "
+        "(network for a shipped ski, beam for a ski file).",
+    ),
+]
+SkiModelOption = Annotated[
+    str,
+    typer.Option(
+        "--ski-model",
+        help="rigid (the paper's method: the profile loaded on the stone pressed into the "
+        "snow) or flexible (the ski's beam bends on the snow; no network).",
+    ),
+]
 
 #: Human output goes to stdout through this console; progress bars go to stderr.
 console = Console()

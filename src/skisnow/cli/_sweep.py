@@ -9,7 +9,15 @@ import typer
 
 from skisnow._errors import InputError, SkisnowError
 from skisnow.cli._app import app
-from skisnow.cli._render import emit_json, err_console, print_table, progress_bar
+from skisnow.cli._render import (
+    JsonOption,
+    ProfileSourceOption,
+    SkiModelOption,
+    emit_json,
+    err_console,
+    print_table,
+    progress_bar,
+)
 from skisnow.cli._ski import resolve_profile_source
 
 
@@ -45,26 +53,13 @@ def sweep(
     model: Annotated[str, typer.Option("--model", help="Contact model: strip or surface.")] = (
         "strip"
     ),
-    profile_source: Annotated[
-        str,
-        typer.Option(
-            "--profile-source",
-            help="Loaded profile: network, beam, or auto (network for shipped skis, beam for "
-            "ski files).",
-        ),
-    ] = "auto",
-    ski_model: Annotated[
-        str,
-        typer.Option(
-            "--ski-model",
-            help="rigid (the paper's method) or flexible (the ski's beam bends on the snow).",
-        ),
-    ] = "rigid",
+    profile_source: ProfileSourceOption = "auto",
+    ski_model: SkiModelOption = "rigid",
     n_points: Annotated[int, typer.Option("--n-points", help="Grid points along the ski.")] = 4096,
     netcdf: Annotated[
         Path | None, typer.Option("--netcdf", help="Also export the finished sweep to NetCDF.")
     ] = None,
-    json_out: Annotated[bool, typer.Option("--json", help="Print one JSON document.")] = False,
+    json_out: JsonOption = False,
 ) -> None:
     """Sweep the contact over ski × mass × load position × snow modulus into a Zarr store.
 
@@ -153,7 +148,7 @@ def plot(
     formats: Annotated[str, typer.Option("--formats", help="Comma-separated formats.")] = (
         "png,svg"
     ),
-    json_out: Annotated[bool, typer.Option("--json", help="Print one JSON document.")] = False,
+    json_out: JsonOption = False,
 ) -> None:
     """Draw the maps of a sweep (area, mean pressure, length, load share vs mass per snow)."""
     from skisnow.plot import save_figure, sweep_figures
@@ -187,14 +182,7 @@ def report(
     workers: Annotated[
         int | None, typer.Option("--workers", help="Dask workers for the maps (0: in process).")
     ] = 0,
-    profile_source: Annotated[
-        str,
-        typer.Option(
-            "--profile-source",
-            help="Loaded profile: network, beam, or auto (network for shipped skis, beam for "
-            "ski files).",
-        ),
-    ] = "auto",
+    profile_source: ProfileSourceOption = "auto",
     scheduler: Annotated[
         str | None,
         typer.Option("--scheduler", envvar="SKISNOW_SCHEDULER", help="Existing Dask scheduler."),
@@ -226,14 +214,8 @@ def report(
             "--day-snow-mpa", help="Snow modulus (MPa) of the stride and the fleet comparison."
         ),
     ] = 100.0,
-    ski_model: Annotated[
-        str,
-        typer.Option(
-            "--ski-model",
-            help="rigid (the paper's method) or flexible (the ski's beam bends on the snow).",
-        ),
-    ] = "rigid",
-    json_out: Annotated[bool, typer.Option("--json", help="Print one JSON document.")] = False,
+    ski_model: SkiModelOption = "rigid",
+    json_out: JsonOption = False,
 ) -> None:
     """Write one self-contained HTML report of a ski (metrics, zones at standard loads, maps,
     the contact over a stride, and a fleet table with --compare-with)."""
