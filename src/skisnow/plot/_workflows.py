@@ -189,8 +189,12 @@ def animate_cycle(
         if len(kz) == 2:
             for ax in (ax_s, ax_p):
                 ax.axvspan(kz[0] * 1e3, kz[1] * 1e3, color=ZONE_COLORS["middle"], alpha=0.08)
-        lo = float(np.nanmin(np.where(loaded[:, None], -u, np.nan))) if loaded.any() else -0.1
-        ax_s.set_ylim(min(lo, -0.05) * 1.2, max(0.5, float(np.nanpercentile(ski_y, 99))))
+        # scale to the running surface (central 60 % of the ski) and the deepest snow, not to
+        # the shovel: the contact is a fraction of a millimetre
+        mid = (x > x[0] + 0.2 * (x[-1] - x[0])) & (x < x[-1] - 0.2 * (x[-1] - x[0]))
+        top = float(np.nanmax(ski_y[:, mid])) if mid.any() else 1.0
+        depth = float(np.nanmax(u)) if loaded.any() else 0.0
+        ax_s.set_ylim(-1.5 * max(depth, 0.01), 1.3 * max(top, 0.05))
         ax_p.set_ylim(0, max(1.0, float(np.nanmax(p)) * 1.05))
         ax_s.set_ylabel("height [mm]")
         ax_s.legend(loc="upper right")
