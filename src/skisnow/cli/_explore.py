@@ -33,6 +33,14 @@ def explore(
     profile_source: Annotated[
         str, typer.Option("--profile-source", help="Loaded profile: network or beam.")
     ] = "network",
+    ski_model: Annotated[
+        str,
+        typer.Option(
+            "--ski-model",
+            help="rigid (the paper's rigid profile), flexible (beam and snow together) or both "
+            "(a switch on the page).",
+        ),
+    ] = "rigid",
     json_out: Annotated[bool, typer.Option("--json", help="Print one JSON document.")] = False,
 ) -> None:
     """Write an interactive explorer page: sliders for mass, load position and snow modulus.
@@ -42,9 +50,12 @@ def explore(
     """
     from skisnow import __version__
     from skisnow._atomic import atomic_write
+    from skisnow._errors import InputError
     from skisnow.explore import ExplorerGrid, explorer_dataset, render_explorer
     from skisnow.sweep import parse_values
 
+    if ski_model not in ("rigid", "flexible", "both"):
+        raise InputError(f"--ski-model: {ski_model!r} is not rigid, flexible or both")
     grid = ExplorerGrid(
         masses=tuple(parse_values(mass_kg, name="--mass-kg")),
         load_positions=tuple(1e-3 * parse_values(load_position_mm, name="--load-position-mm")),
@@ -57,6 +68,7 @@ def explore(
             ski,
             grid,
             profile_source=profile_source,
+            ski_models=("rigid", "flexible") if ski_model == "both" else (ski_model,),
             progress=bar,
         )
     ds.attrs["skisnow_version"] = __version__

@@ -10,6 +10,7 @@ pressure keeps the force balance; peak pressures are in the metrics).
 
 from __future__ import annotations
 
+import itertools
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
@@ -88,6 +89,7 @@ def explorer_dataset(
     grid: ExplorerGrid | None = None,
     *,
     profile_source: str = "network",
+    ski_models: Sequence[str] = ("rigid",),
     progress: Callable[[int, int], None] | None = None,
 ):
     """Solve every point of ``grid`` for each ski: an :class:`xarray.Dataset` with dims
@@ -98,6 +100,11 @@ def explorer_dataset(
     point and zone; ``converged`` per point. A point whose load the profile cannot carry is NaN
     (fields) with ``converged = False``. ``progress(done, total)`` is called after each chunk of
     masses. Along the masses each solve starts from the previous pressure (warm start).
+
+    ``ski_models``: ``'rigid'`` (the paper's method: the loaded profile from ``profile_source``
+    pressed into the snow as a rigid body) and/or ``'flexible'`` (the beam and the half-space
+    solved together, :func:`skisnow.contact.solve_flexible`); the ski base shown is the rigid
+    profile, or the bent ski, lowered by δ + θ(x − x_m).
     """
     import xarray as xr
 
@@ -109,6 +116,9 @@ def explorer_dataset(
     if not names or len(set(names)) != len(names):
         raise InputError(f"skis: need distinct skis, got {list(names)}")
     resolved = [resolve_ski(s) for s in names]  # an unknown ski fails here, before any solve
+    models = tuple(ski_models)
+    if not models or len(set(models)) != len(models) or set(models) - {"rigid", "flexible"}:
+        raise InputError(f"ski models: need distinct 'rigid' and/or 'flexible', got {models}")
     n_s, n_m, n_p, n_e = (
         len(names),
         len(grid.masses),
@@ -116,21 +126,23 @@ def explorer_dataset(
         len(grid.snow_moduli),
     )
     nd = grid.n_display
-    shape = (n_s, 1, n_m, n_p, n_e)
+    shape = (n_s, len(models), n_m, n_p, n_e)
     fields = {k: np.full((*shape, nd), np.nan) for k in ("pressure_kpa", "bottom_um", "snow_um")}
     codes = np.zeros((*shape, nd), dtype=np.uint8)
     metrics = {k: np.full((*shape, len(ZONES)), np.nan) for k in METRICS}
     patches = np.zeros((*shape, len(ZONES)), dtype=np.int32)
     converged = np.zeros(shape, dtype=bool)
     x_mm = np.zeros((n_s, nd))
-    total, done = n_s * n_p * n_e, 0
+    total, done = n_s * len(models) * n_p * n_e, 0
     for s, ski in enumerate(resolved):
         for p, xm in enumerate(grid.load_positions):
             x, heights = loaded_profiles(
                 ski, grid.masses, xm, profile_source=profile_source, n_points=grid.n_points
             )
             x_mm[s] = block_mean(x, nd) * 1e3
-            for e, modulus in enumerate(grid.snow_moduli):
+            for (j, ski_model), (e, modulus) in itertools.product(
+                enumerate(models), enumerate(grid.snow_moduli)
+            ):
                 previous = None
                 for a, mass in enumerate(grid.masses):
                     try:
@@ -139,7 +151,8 @@ def explorer_dataset(
                             mass=mass,
                             load_position=xm,
                             snow_modulus=modulus,
-                            profile=(x, heights[a]),
+                            profile=(x, heights[a]) if ski_model == "rigid" else None,
+                            ski_model=ski_model,
                             start=previous,
                             n_points=grid.n_points,
                             workers=1,
@@ -147,7 +160,7 @@ def explorer_dataset(
                     except UnsupportedLoadError:
                         previous = None
                         continue
-                    i = (s, 0, a, p, e)
+                    i = (s, j, a, p, e)
                     sol, zones = case.solution, case.zones
                     base = sol.height - sol.translation - sol.rotation * (sol.x - xm)
                     fields["pressure_kpa"][i] = block_mean(sol.pressure, nd) * 1e-3
@@ -173,7 +186,7 @@ def explorer_dataset(
     data["x_mm"] = (("ski", "station"), x_mm)
     coords = {
         "ski": [getattr(k, "name", str(k)) for k in resolved],
-        "model": ["rigid"],
+        "model": list(models),
         "mass_kg": list(grid.masses),
         "load_position_mm": [round(v * 1e3, 6) for v in grid.load_positions],
         "snow_modulus_mpa": [round(v * 1e-6, 6) for v in grid.snow_moduli],

@@ -198,7 +198,9 @@
 
   function bind(id, key) {
     const el = document.getElementById(id);
-    el.addEventListener("input", () => { state[key] = Number(el.value); render(); });
+    const update = () => { state[key] = Number(el.value); render(); };
+    el.addEventListener("input", update);
+    el.addEventListener("change", update);
     state[key] = Number(el.value);
   }
 
