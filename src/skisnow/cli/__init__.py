@@ -11,6 +11,7 @@ from skisnow.cli import (  # noqa: F401  (registers)
     _identify,
     _micro,
     _network,
+    _paper,
     _ski,
     _sweep,
     _workflows,
