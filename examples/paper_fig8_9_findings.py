@@ -1,9 +1,10 @@
 """The Figure 8–9 findings of Kalliorinne et al. (2023), §4, checked on the shipped skate's maps.
 
 The skate's rear and front maps (apparent contact area, mean pressure, patches, Breitschädel
-area) over load 5–80 kg (5 kg steps) at x_m = -120 mm and snow 20–400 MPa (20 MPa steps) are computed with
-the paper's pipeline (beam on the rigid plane → rigid profile → strip half-space), and every
-finding the paper reads off its Figures 8–9 is evaluated with the criterion printed next to it.
+area) over load 5–80 kg (5 kg steps) at x_m = -120 mm and snow 20–400 MPa (20 MPa steps) are
+computed with the paper's pipeline (beam on the rigid plane → rigid profile → strip
+half-space), and every finding the paper reads off its Figures 8–9 is evaluated with the
+criterion printed next to it.
 The skis are fitted to the captions of Figures 4–7 only: these findings are the validation.
 
     uv run python examples/paper_fig8_9_findings.py [--small] [--out DIR] [--json]

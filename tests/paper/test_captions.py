@@ -127,3 +127,18 @@ def test_caption_table_input_errors() -> None:
     # a subset of skis runs only their cases
     only = caption_table({"skate": get_ski("skate")})
     assert {r.case.ski for r in only} == {"skate"} and np.all([r.zone != "middle" for r in only])
+
+
+def test_captions_cli_json_and_bad_option(capsys) -> None:  # type: ignore[no-untyped-def]
+    import json
+
+    from skisnow.cli import main
+
+    assert main(["captions", "--ski", "skate", "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert {r["ski"] for r in doc["rows"]} == {"skate"}
+    assert doc["tolerances"]["length_pct"] == pytest.approx(20.0)
+    row = doc["rows"][0]
+    assert {"paper_length_mm", "length_mm", "mean_pressure_kpa", "load_share_pct", "ok"} <= set(row)
+    assert main(["captions", "--ski", "alpine"]) == 2  # bad input: one line, exit code 2
+    assert "--ski" in capsys.readouterr().err
