@@ -477,8 +477,7 @@ def identify_ski(
         A starting ski; default z0 from the two lightest profiles extrapolated to zero load
         and the constant EI that fits best on it.
     max_nfev
-        Evaluation limit of the first least-squares fit (a third of it for each further λ,
-        warm-started).
+        Evaluation limit of each least-squares fit (each λ warm-started from the previous).
     continuation
         Fractions of the bench's masses fitted first, in turn (lightest first).
     progress
@@ -634,10 +633,8 @@ def identify_ski(
         if 2 <= len(subset) < len(cases):
             p = fit(p, grid[0], subset).x
             say(f"continuation: load cases up to {m_max:g} kg fitted")
-    for i_lam, lam in enumerate(grid):
-        # each further λ starts from the previous fit: a third of the evaluations
-        nfev = max_nfev if i_lam == 0 else max(10, max_nfev // 3)
-        sol, gcv, rss, edf, a_inv, jtj, r = fit(p, lam, nfev=nfev)
+    for lam in grid:  # each further λ starts from the previous fit
+        sol, gcv, rss, edf, a_inv, jtj, r = fit(p, lam)
         records.append((lam, gcv, float(np.sqrt(rss / problem.n_data)), edf))
         fits.append((sol, a_inv, jtj, r))
         p = sol.x
