@@ -145,19 +145,23 @@ def contact(
         raise InputError(
             f"--profile-source must be one of {', '.join(PROFILE_SOURCES)}, got {profile_source!r}"
         )
+    # the case in SI units (the flexible figure draws the rigid route of the same case beside it)
+    same_case: dict[str, Any] = {
+        "mass": mass_kg,
+        "load_position": load_position_mm * 1e-3,
+        "snow_modulus": snow_modulus_mpa * 1e6,
+        "model": model,
+        "n_points": points,
+        "base": base_modulus_mpa * 1e6,
+        "n_across": n_across,
+    }
     case = solve_case(
         ski,
-        mass=mass_kg,
-        load_position=load_position_mm * 1e-3,
-        snow_modulus=snow_modulus_mpa * 1e6,
-        model=model,
+        **same_case,
         profile_source=profile_source,
-        n_points=points,
-        base=base_modulus_mpa * 1e6,
         profile=None if profile is None else read_profile(profile),
         width=None if width_mm is None else width_mm * 1e-3,
         label=None if profile is None else Path(str(profile)).name,
-        n_across=n_across,
         ski_model=ski_model,
     )
     sol, zones = case.solution, case.zones
@@ -174,17 +178,7 @@ def contact(
 
         reference = None
         if ski_model == "flexible":  # the rigid route of the same case, drawn beside it
-            reference = solve_case(
-                ski,
-                mass=mass_kg,
-                load_position=load_position_mm * 1e-3,
-                snow_modulus=snow_modulus_mpa * 1e6,
-                model=model,
-                profile_source="beam",
-                n_points=points,
-                base=base_modulus_mpa * 1e6,
-                n_across=n_across,
-            ).solution
+            reference = solve_case(ski, **same_case, profile_source="beam").solution
         fig = plot_contact(
             sol,
             zones,
