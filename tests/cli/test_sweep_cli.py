@@ -130,4 +130,7 @@ def test_contact_part_of_the_demo_writes_every_figure(tmp_path: Path) -> None:
             stem = f"{ski}_x-120mm_{kind}"
             assert {f"{stem}.png", f"{stem}.svg"} <= names
         assert f"{ski}_report.html" in names
+        # the report links the explorer page written beside it
+        assert 'href="explore.html"' in (tmp_path / f"{ski}_report.html").read_text("utf-8")
+    assert "explore.html" in names
     assert all(c["converged"] for c in doc["cases"])

@@ -46,6 +46,7 @@ def test_report_is_self_contained(report: Path) -> None:
     assert report.name == "skate_report.html"
     assert "<script" not in text.lower() and "<link" not in text.lower()
     # every src/href points inside the document (data: or #), never to a network or a file
+    # (but the explorer page beside the report, when there is one: see test_report_links_...)
     for ref in re.findall(r'(?:src|href)\s*=\s*"([^"]*)"', text):
         assert ref.startswith(("data:", "#")), ref
     # no URL at all but the SVG/XLink namespace names (identifiers, never fetched)
@@ -118,3 +119,14 @@ def test_report_renders_in_headless_chromium(report: Path, tmp_path: Path) -> No
     assert pixels[..., :3].std() > 0.05  # not a blank page: header, tables and figures drawn
     dom = _chromium(["--dump-dom", report.as_uri()], tmp_path).stdout
     assert dom.count("<svg") >= 3 and "Contact at the standard loads" in dom
+
+
+def test_report_links_an_explorer_beside_it_and_nothing_else() -> None:
+    from skisnow.report import Link
+    from skisnow.report._html import Section, render_page
+
+    page = render_page("t", "s", [Section("x", (), (Link("ski_explore.html", "open"),))])
+    assert re.findall(r'href\s*=\s*"([^"]*)"', page) == ["ski_explore.html"]
+    for bad in ("https://example.org/x.html", "/tmp/x.html", "../x.html", "file:x.html"):
+        with pytest.raises(ValueError, match="only a file name"):
+            Link(bad, "no")

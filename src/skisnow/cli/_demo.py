@@ -86,7 +86,8 @@ def run_contact_demo(
     ski_model: str = "rigid",
 ) -> dict[str, Any]:
     """The contact part of the demo: the analogues of the paper's Figures 4–7 (contact pictures),
-    Figures 8–9 (maps of a sweep over load and snow, both skis) and one HTML report per ski.
+    Figures 8–9 (maps of a sweep over load and snow, both skis), the explorer page of both skis
+    and one HTML report per ski (linking the explorer).
 
     The maps use the paper's snow moduli (default ``snow_moduli`` 20–400 MPa in 20 MPa steps)
     and stations (``n_points`` 4096) with a coarser load step (``masses`` [kg], default 5–130 kg
@@ -94,15 +95,26 @@ def run_contact_demo(
     ``skisnow sweep`` and ``examples/fig8_9_maps.py`` run the paper's 1 kg steps.
     ``ski_model='flexible'``: every case and map with the ski's beam bending on the snow.
     """
+    import math
+
     import numpy as np
 
     from skisnow.cli._render import progress_bar
+    from skisnow.explore import ExplorerGrid, write_explorer
     from skisnow.pipeline import solve_case, study_ski
     from skisnow.plot import plot_contact, save_figure, sweep_figures
     from skisnow.report import write_report
     from skisnow.ski import SHIPPED_SKIS
     from skisnow.sweep import SweepSpec, open_sweep, run_sweep
 
+    # the explorer: the maps' masses and moduli when given, else a coarse grid
+    coarse_moduli = tuple(e * 1e6 for e in (20, 40, 60, 100, 150, 200, 300, 400))
+    explorer_grid = ExplorerGrid(
+        masses=tuple(range(10, 131, 10)) if masses is None else tuple(masses),
+        snow_moduli=coarse_moduli if snow_moduli is None else tuple(snow_moduli),
+        n_points=n_points,
+        n_display=math.gcd(512, n_points),
+    )
     out.mkdir(parents=True, exist_ok=True)
     files: list[str] = []
     cases = []
@@ -143,10 +155,17 @@ def run_contact_demo(
     kinds = ("area", "mean_pressure", "load_share")
     for stem, fig in sweep_figures(ds, load_positions_mm=[-120.0], kinds=kinds).items():
         files += [str(p) for p in save_figure(fig, out / stem)]
+    # The explorer page of both skis (Figure 8/9-style maps over the paper's bench positions),
+    # on a coarser grid than `skisnow explore`'s default to keep the demo short.
+    with progress_bar("explorer", disable=not progress, transient=False) as bar:
+        page, _ = write_explorer(spec.skis, out / "explore.html", explorer_grid,
+                                 profile_source=profile_source, ski_models=(ski_model,),
+                                 progress=bar)  # fmt: skip
+    files.append(str(page))
     for ski in spec.skis:
         study = study_ski(ski, dataset=ds, profile_source=profile_source, n_points=n_points,
                           ski_model=ski_model)  # fmt: skip
-        files.append(str(write_report(study, out)))
+        files.append(str(write_report(study, out, explorer=page.name)))
     return {
         "profile_source": profile_source,
         "ski_model": ski_model,

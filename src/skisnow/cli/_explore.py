@@ -9,7 +9,7 @@ from typing import Annotated
 import typer
 
 from skisnow.cli._app import app
-from skisnow.cli._render import emit_json, err_console, progress_bar
+from skisnow.cli._render import ProfileSourceOption, emit_json, err_console, progress_bar
 
 
 @app.command()
@@ -30,9 +30,7 @@ def explore(
     stations: Annotated[
         int, typer.Option("--stations", help="Display stations along the ski (divides 4096).")
     ] = 512,
-    profile_source: Annotated[
-        str, typer.Option("--profile-source", help="Loaded profile: network or beam.")
-    ] = "network",
+    profile_source: ProfileSourceOption = "auto",
     ski_model: Annotated[
         str,
         typer.Option(
@@ -48,10 +46,9 @@ def explore(
     The page opens from disk in any browser, with no server and no network; it holds the contact
     of every grid point (zones, pressures, the ski base and the deformed snow).
     """
-    from skisnow import __version__
-    from skisnow._atomic import atomic_write
     from skisnow._errors import InputError
-    from skisnow.explore import ExplorerGrid, explorer_dataset, render_explorer
+    from skisnow.cli._ski import resolve_profile_source
+    from skisnow.explore import ExplorerGrid, write_explorer
     from skisnow.sweep import parse_values
 
     if ski_model not in ("rigid", "flexible", "both"):
@@ -62,20 +59,17 @@ def explore(
         snow_moduli=tuple(1e6 * parse_values(snow_modulus_mpa, name="--snow-modulus-mpa")),
         n_display=stations,
     )
+    source = resolve_profile_source(profile_source, list(ski))
     start = time.perf_counter()
     with progress_bar("explorer", transient=False) as bar:
-        ds = explorer_dataset(
+        out, ds = write_explorer(
             ski,
+            out,
             grid,
-            profile_source=profile_source,
+            profile_source=source,
             ski_models=("rigid", "flexible") if ski_model == "both" else (ski_model,),
             progress=bar,
         )
-    ds.attrs["skisnow_version"] = __version__
-    page = render_explorer(
-        ds, title="skisnow explorer", subtitle=f"{', '.join(ski)} · skisnow {__version__}"
-    )
-    atomic_write(out, page)
     seconds = time.perf_counter() - start
     size_mb = out.stat().st_size / 1e6
     if json_out:

@@ -215,10 +215,19 @@ def report(
         ),
     ] = 100.0,
     ski_model: SkiModelOption = "rigid",
+    explorer: Annotated[
+        bool,
+        typer.Option(
+            "--explorer/--no-explorer",
+            help="Also write the ski's interactive explorer page beside the report (default "
+            "grid: 26 masses x 6 positions x 10 moduli) and link it from the report.",
+        ),
+    ] = False,
     json_out: JsonOption = False,
 ) -> None:
     """Write one self-contained HTML report of a ski (metrics, zones at standard loads, maps,
-    the contact over a stride, and a fleet table with --compare-with)."""
+    the contact over a stride, a fleet table with --compare-with, and a linked explorer page
+    with --explorer)."""
     from skisnow.pipeline import study_ski
     from skisnow.report import write_report
     from skisnow.sweep import parse_values
@@ -271,8 +280,17 @@ def report(
         )
         for spec, message in fleet.failures:
             err_console.print(f"[bold red]not compared[/]: {spec}: {message}")
-    path = write_report(study, out, cycles=cycles, fleet=fleet)
+    explorer_name = None
+    if explorer:
+        from skisnow.explore import write_explorer
+
+        explorer_name = f"{stem}_explore.html"
+        with progress_bar("explorer", disable=json_out) as bar:
+            write_explorer([ski], out / explorer_name, profile_source=source,
+                           ski_models=(ski_model,), progress=bar)  # fmt: skip
+    path = write_report(study, out, cycles=cycles, fleet=fleet, explorer=explorer_name)
     if json_out:
-        emit_json({"report": str(path)})
+        emit_json({"report": str(path), "explorer": explorer_name and str(out / explorer_name)})
         return
-    print_table("report", ["ski", "file"], [(ski, str(path))])
+    rows = [(ski, str(path))] + ([(ski, str(out / explorer_name))] if explorer_name else [])
+    print_table("report", ["ski", "file"], rows)

@@ -10,7 +10,7 @@ base and the deformed snow, the pressure with the zones shaded, the zone table a
 
 from skisnow.explore._data import ZONES, ExplorerGrid, block_mean, explorer_dataset, zone_codes
 from skisnow.explore._pack import pack, quantise_curves, unpack
-from skisnow.explore._page import render_explorer
+from skisnow.explore._page import render_explorer, write_explorer
 
 __all__ = [
     "ZONES",
@@ -21,5 +21,6 @@ __all__ = [
     "quantise_curves",
     "render_explorer",
     "unpack",
+    "write_explorer",
     "zone_codes",
 ]

@@ -7,7 +7,9 @@ from __future__ import annotations
 import base64
 import html
 import json
+from collections.abc import Callable, Sequence
 from importlib import resources
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -76,3 +78,29 @@ def render_explorer(ds: Any, *, title: str = "skisnow explorer", subtitle: str =
     for key, value in replacements.items():
         page = page.replace(key, value)
     return page
+
+
+def write_explorer(
+    skis: Sequence[Any],
+    path: str | Path,
+    grid: Any = None,
+    *,
+    profile_source: str = "network",
+    ski_models: Sequence[str] = ("rigid",),
+    progress: Callable[[int, int], None] | None = None,
+) -> tuple[Path, Any]:
+    """Solve the explorer's grid (:func:`skisnow.explore.explorer_dataset`) and write its page
+    to ``path`` atomically (a killed run leaves no half page). Returns ``(path, dataset)``."""
+    from skisnow import __version__
+    from skisnow._atomic import atomic_write
+    from skisnow.explore._data import explorer_dataset
+
+    ds = explorer_dataset(
+        skis, grid, profile_source=profile_source, ski_models=ski_models, progress=progress
+    )
+    ds.attrs["skisnow_version"] = __version__
+    names = ", ".join(str(s) for s in ds["ski"].values)
+    page = render_explorer(
+        ds, title="skisnow explorer", subtitle=f"{names} · skisnow {__version__}"
+    )
+    return atomic_write(path, page), ds

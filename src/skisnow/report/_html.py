@@ -48,12 +48,25 @@ class Figure:
 
 
 @dataclass(frozen=True)
+class Link:
+    """A link to a file beside the page (a relative name such as ``explore.html``: the report
+    stays offline; never a URL)."""
+
+    href: str
+    text: str
+
+    def __post_init__(self) -> None:
+        if ":" in self.href or self.href.startswith(("/", "\\")) or "/" in self.href:
+            raise ValueError(f"Link: only a file name beside the page, got {self.href!r}")
+
+
+@dataclass(frozen=True)
 class Section:
     """A titled section: paragraphs (plain text), then tables and figures in order."""
 
     title: str
     paragraphs: Sequence[str] = ()
-    items: Sequence[Table | Figure] = field(default_factory=tuple)
+    items: Sequence[Table | Figure | Link] = field(default_factory=tuple)
 
 
 def _cell(value: Any, floatfmt: str) -> str:
@@ -79,6 +92,16 @@ def _figure(f: Figure) -> str:
     return f"<figure>{f.svg}{cap}</figure>"
 
 
+def _link(link: Link) -> str:
+    return f'<p><a href="{html.escape(link.href)}">{html.escape(link.text)}</a></p>'
+
+
+def _item(item: Table | Figure | Link) -> str:
+    if isinstance(item, Table):
+        return _table(item)
+    return _link(item) if isinstance(item, Link) else _figure(item)
+
+
 def render_page(title: str, subtitle: str, sections: Sequence[Section], *, footer: str = "") -> str:
     """The whole HTML document as a string."""
     parts = [
@@ -92,7 +115,7 @@ def render_page(title: str, subtitle: str, sections: Sequence[Section], *, foote
         parts.append(f"<section><h2>{html.escape(s.title)}</h2>")
         parts += [f"<p>{html.escape(p)}</p>" for p in s.paragraphs]
         for item in s.items:
-            parts.append(_table(item) if isinstance(item, Table) else _figure(item))
+            parts.append(_item(item))
         parts.append("</section>")
     if footer:
         parts.append(f"<footer>{html.escape(footer)}</footer>")

@@ -21,7 +21,7 @@ from typing import Any
 
 import numpy as np
 
-from skisnow.report._html import Figure, Section, Table, render_page
+from skisnow.report._html import Figure, Link, Section, Table, render_page
 
 
 def _metrics_section(study: Any) -> Section:
@@ -158,12 +158,28 @@ def _maps_section(study: Any) -> Section:
     return Section("Maps over load and snow", (note,), items)
 
 
-def build_report(study: Any, *, cycles: Sequence[Any] = (), fleet: Any = None) -> str:
+def _explorer_section(explorer: str) -> Section:
+    return Section(
+        "Interactive explorer",
+        (
+            "Move the mass, the load position and the snow modulus and watch the contact: the "
+            "ski base and the deformed snow, the pressure with its zones, the zone table and the "
+            "maps with the current point marked. One self-contained page beside this report "
+            "(no server, no network).",
+        ),
+        (Link(explorer, f"Open the explorer ({explorer})"),),
+    )
+
+
+def build_report(
+    study: Any, *, cycles: Sequence[Any] = (), fleet: Any = None, explorer: str | None = None
+) -> str:
     """The report of a :class:`skisnow.pipeline.SkiStudy` as an HTML string.
 
     ``cycles``: load cycles of the ski (:func:`skisnow.workflows.run_cycle` Datasets, e.g. the
     stride at the athlete's weight); ``fleet``: a :class:`skisnow.workflows.FleetComparison`
-    when several skis are compared. Each adds its section.
+    when several skis are compared; ``explorer``: the file name of an explorer page
+    (:mod:`skisnow.explore`) beside the report, linked. Each adds its section.
     """
     from skisnow import __version__
     from skisnow.report._passport import passport_section
@@ -175,6 +191,8 @@ def build_report(study: Any, *, cycles: Sequence[Any] = (), fleet: Any = None) -
     sections += [cycle_section(ds) for ds in cycles]
     if fleet is not None:
         sections.append(fleet_section(fleet))
+    if explorer is not None:
+        sections.append(_explorer_section(explorer))
     return render_page(
         f"skisnow report: {name} ski",
         f"How the {name} ski meets the snow — body mass {study.body_mass:g} kg, load at "
@@ -187,7 +205,12 @@ def build_report(study: Any, *, cycles: Sequence[Any] = (), fleet: Any = None) -
 
 
 def write_report(
-    study: Any, out_dir: str | Path, *, cycles: Sequence[Any] = (), fleet: Any = None
+    study: Any,
+    out_dir: str | Path,
+    *,
+    cycles: Sequence[Any] = (),
+    fleet: Any = None,
+    explorer: str | None = None,
 ) -> Path:
     """Write ``{out_dir}/{ski}_report.html`` of a :class:`skisnow.pipeline.SkiStudy` (with the
     optional ``cycles`` and ``fleet`` sections of :func:`build_report`); return its path."""
@@ -195,5 +218,5 @@ def write_report(
 
     path = Path(out_dir) / f"{study.ski.name}_report.html"
     return atomic_write(
-        path, build_report(study, cycles=cycles, fleet=fleet)
+        path, build_report(study, cycles=cycles, fleet=fleet, explorer=explorer)
     )  # a killed run leaves no half page
