@@ -122,6 +122,12 @@ def contact(
             "rigid profile"
         )
     if ski is not None:
+        from skisnow.ski import get_ski
+
+        try:
+            get_ski(ski)
+        except InputError as exc:
+            raise InputError(f"--ski: {exc}") from None
         from skisnow.cli._ski import resolve_profile_source
 
         profile_source = resolve_profile_source(profile_source, [ski])

@@ -40,6 +40,11 @@ def _load(source: str, pixel_um: float | None, height_unit: str, *, seed: int = 
     return micro.read_topography(path, pixel_size=pixel, height_unit=height_unit)
 
 
+def _check_form(form: str) -> None:
+    if form not in ("mean", "plane", "polynomial"):
+        raise InputError(f"--form: {form!r} unknown; valid: mean, plane, polynomial")
+
+
 def _cutoff(cutoff_um: float) -> float | None:
     """--cutoff-um [µm] → the low-pass cut-off [m] (0: no filter)."""
     from skisnow._checks import check_value
@@ -83,6 +88,7 @@ def topo(
     from skisnow import micro
 
     _cutoff(cutoff_um)  # checked before the file is read
+    _check_form(form)
     t = _load(file, pixel_um, height_unit)
     r = micro.roughness(t, cutoff=_cutoff(cutoff_um), form=form)
     doc = {
@@ -210,6 +216,9 @@ def bearing(
         if value < 1:
             raise InputError(f"{option}: need an integer >= 1, got {value}")
     _cutoff(cutoff_um)
+    _check_form(form)
+    if hardness_model not in ("poirier", "makkonen"):
+        raise InputError(f"--hardness-model: {hardness_model!r} unknown; valid: poirier, makkonen")
     diameters = parse_grain_range(grain_um)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", DomainWarning)

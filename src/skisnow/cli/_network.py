@@ -51,6 +51,18 @@ def train(
     from skisnow.io import read_bench
     from skisnow.ski import save_network, train_network
 
+    widths_list = [w.strip() for w in widths.split(",")]
+    if len(widths_list) != 6 or not all(w.isdigit() and int(w) >= 1 for w in widths_list):
+        raise InputError(
+            f"--widths: need six positive integers (load, collapse1-3, camber1-2), got {widths!r}"
+        )
+    for option, value, least in (
+        ("--adam-steps", adam_steps, 0),
+        ("--lm-steps", lm_steps, 0),
+        ("--ensemble", ensemble, 1),
+    ):
+        if value < least:
+            raise InputError(f"{option}: need an integer >= {least}, got {value}")
     data = read_bench(bench_file)
     with progress_bar("train") as bar:
 

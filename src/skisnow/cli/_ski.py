@@ -242,7 +242,10 @@ def metrics_documents(
     if path.suffix.lower() == ".json":
         return [ski_metrics(str(path), **kw).as_field_units()]
     data = read_bench(path)
-    return [ski_metrics(data, ski=name, **kw).as_field_units() for name in data.skis]
+    try:
+        return [ski_metrics(data, ski=name, **kw).as_field_units() for name in data.skis]
+    except InputError as exc:  # name the file the bench came from
+        raise type(exc)(f"{path}: {exc}") from None
 
 
 def print_metrics_table(docs: list[dict[str, Any]], title: str) -> None:

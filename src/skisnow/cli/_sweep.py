@@ -73,6 +73,20 @@ def sweep(
     check_grid_points(n_points, where="--n-points")
     if workers is not None and workers < 0:
         raise InputError(f"--workers: need >= 0 (0: no Dask), got {workers}")
+    from skisnow.ski import get_ski
+    from skisnow.sweep import MODELS, PROFILE_SOURCES
+
+    for name in ski:
+        try:
+            get_ski(name)
+        except InputError as exc:
+            raise InputError(f"--ski: {exc}") from None
+    if model not in MODELS:
+        raise InputError(f"--model: {model!r} is not one of {', '.join(MODELS)}")
+    if profile_source not in (*PROFILE_SOURCES, "auto"):
+        raise InputError(
+            f"--profile-source: {profile_source!r} is not one of {', '.join(PROFILE_SOURCES)}, auto"
+        )
     spec = SweepSpec(
         skis=tuple(ski),
         masses=check_option_values(parse_values(mass_kg, name="--mass-kg"), "mass", "--mass-kg"),
