@@ -128,7 +128,7 @@ def test_bad_profile_files(capsys, tmp_path: Path) -> None:
     rows = "\n".join(f"{i},{0.1 if i != 5 else 'abc'}" for i in range(10))
     bad.write_text("x_mm,height_mm\n" + rows + "\n")
     assert main([*BASE, "--profile", str(bad)]) == 2
-    assert "row 7, column height_mm" in capsys.readouterr().err
+    assert "line 7, column height_mm" in capsys.readouterr().err
 
 
 def test_subprocess_smoke(tmp_path: Path) -> None:

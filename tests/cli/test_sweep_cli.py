@@ -56,10 +56,10 @@ def test_sweep_errors_are_one_line(tmp_path: Path, capsys: pytest.CaptureFixture
                  "--n-points", "512", "--profile-source", "beam", "--workers", "0",
                  "--out", str(store)])  # fmt: skip
     err = capsys.readouterr().err
-    assert code == 1 and "different sweep" in err and "snow_moduli" in err
+    assert code == 2 and "different sweep" in err and "snow_moduli" in err
     assert "Traceback" not in err and len(err.strip().splitlines()) == 1
     assert (
-        main(["sweep", "--ski", "skate", "--mass-kg", "5:1:1", "--out", str(tmp_path / "x")]) == 1
+        main(["sweep", "--ski", "skate", "--mass-kg", "5:1:1", "--out", str(tmp_path / "x")]) == 2
     )
     assert "--mass-kg" in capsys.readouterr().err
     assert (
@@ -80,7 +80,7 @@ def test_sweep_errors_are_one_line(tmp_path: Path, capsys: pytest.CaptureFixture
                 "beam",
             ]
         )
-        == 1
+        == 2
     )
     assert "nope" in capsys.readouterr().err
 

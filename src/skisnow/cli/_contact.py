@@ -127,7 +127,7 @@ def contact(
         try:
             get_ski(ski)
         except InputError as exc:
-            raise InputError(f"--ski: {exc}") from None
+            raise type(exc)(f"--ski: {exc}") from None
         from skisnow.cli._ski import resolve_profile_source
 
         profile_source = resolve_profile_source(profile_source, [ski])

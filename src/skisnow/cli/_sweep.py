@@ -80,7 +80,7 @@ def sweep(
         try:
             get_ski(name)
         except InputError as exc:
-            raise InputError(f"--ski: {exc}") from None
+            raise type(exc)(f"--ski: {exc}") from None
     if model not in MODELS:
         raise InputError(f"--model: {model!r} is not one of {', '.join(MODELS)}")
     if profile_source not in (*PROFILE_SOURCES, "auto"):
