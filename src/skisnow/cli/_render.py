@@ -94,10 +94,15 @@ def print_table(
     *,
     floatfmt: str | None = None,
 ) -> None:
-    """Print a Rich table: floats via :func:`format_number` or ``floatfmt``, None as a dash."""
-    table = Table(title=title)
+    """Print a Rich table: floats via :func:`format_number` or ``floatfmt``, None as a dash.
+
+    Texts are printed literally: units in brackets (``length [mm]``) are not Rich markup.
+    """
+    from rich.markup import escape
+
+    table = Table(title=escape(title))
     for col in columns:
-        table.add_column(col, justify="right" if col != columns[0] else "left")
+        table.add_column(escape(col), justify="right" if col != columns[0] else "left")
     for row in rows:
         cells = []
         for v in row:
@@ -106,7 +111,7 @@ def print_table(
             elif isinstance(v, (float, np.floating)):
                 cells.append(format(float(v), floatfmt) if floatfmt else format_number(float(v)))
             else:
-                cells.append(str(v))
+                cells.append(escape(str(v)))
         table.add_row(*cells)
     console.print(table)
 
