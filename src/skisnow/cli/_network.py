@@ -213,6 +213,8 @@ def _profile_figure(
         f"{summary['load_position_mm']:g} mm"
     )
     ax.legend(fontsize=8)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=150)
+    from skisnow._atomic import atomic_path
+
+    with atomic_path(path) as tmp:
+        fig.savefig(tmp, dpi=150)
     plt.close(fig)

@@ -133,6 +133,6 @@ def fields_table(solution: ContactSolution) -> pd.DataFrame:
 def write_fields(solution: ContactSolution, path: str | Path) -> Path:
     """Write :func:`fields_table` as CSV (full float precision)."""
     path = Path(path)
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fields_table(solution).to_csv(path, index=False, float_format="%.10g")
-    return path
+    from skisnow._atomic import atomic_write
+
+    return atomic_write(path, fields_table(solution).to_csv(index=False, float_format="%.10g"))

@@ -155,7 +155,10 @@ def save_figure(
     with style():
         for fmt in formats:
             out = stem.with_name(f"{stem.name}.{fmt}")
-            fig.savefig(out, format=fmt, metadata=_metadata(fmt))
+            from skisnow._atomic import atomic_path
+
+            with atomic_path(out) as tmp:  # a killed save never leaves half a figure
+                fig.savefig(tmp, format=fmt, metadata=_metadata(fmt))
             paths.append(out)
     return paths
 
