@@ -369,12 +369,13 @@ def positive_finite(name: str, value: float, unit: str = "") -> float:
     The library's own argument check (SI units); values typed by users go through
     :func:`check_value` with their :class:`Quantity` instead.
     """
+    need = f"{name} must be a finite number > 0{' ' + unit if unit else ''}, got {value!r}"
     try:
         v = float(value)
     except (TypeError, ValueError):
-        raise InputError(f"{name} must be a finite number > 0 {unit}, got {value!r}") from None
+        raise InputError(need) from None
     if not (math.isfinite(v) and v > 0):
-        raise InputError(f"{name} must be a finite number > 0 {unit}, got {value!r}".rstrip())
+        raise InputError(need)
     return v
 
 

@@ -131,10 +131,10 @@ def _check(
 ) -> tuple[np.ndarray, float, int, int]:
     if shape not in ("sphere", "paraboloid"):
         raise InputError(f"shape {shape!r} unknown; valid: 'sphere', 'paraboloid'")
-    if not (np.isfinite(diameter) and diameter > 0):
-        raise InputError(f"grain diameter must be positive [m], got {diameter}")
-    if not (np.isfinite(pressure) and pressure > 0):
-        raise InputError(f"macroscopic pressure must be positive [Pa], got {pressure}")
+    from skisnow._checks import positive_finite  # the one positive-and-finite rule
+
+    positive_finite("grain diameter", diameter, "m")
+    positive_finite("macroscopic pressure", pressure, "Pa")
     if not (np.isfinite(hardness) and hardness > pressure):
         raise InputError(f"ice hardness must exceed the pressure [Pa], got {hardness}")
     if int(stride) < 1:

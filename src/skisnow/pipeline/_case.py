@@ -114,10 +114,9 @@ class Case:
 
 
 def _positive(name: str, value: Any) -> float:
-    v = float(value)
-    if not (math.isfinite(v) and v > 0):
-        raise InputError(f"{name}: need a finite value > 0, got {value!r}")
-    return v
+    from skisnow._checks import positive_finite  # the one positive-and-finite rule
+
+    return positive_finite(name, value)
 
 
 def _check_inputs(
