@@ -33,20 +33,21 @@ __all__ = [
 BREITSCHAEDEL_THRESHOLD: float = 50e-6
 
 
-def _glide_sides(
-    x: NDArray[np.float64], kick_zone: tuple[float, float] | None
-) -> tuple[NDArray[np.bool_], NDArray[np.bool_]]:
+def _glide_sides(x: NDArray[np.float64], kick_zone: tuple[float, float] | None) -> tuple[int, int]:
+    """Stations ``[:rear_end]`` behind and ``[front_start:]`` ahead of the kick zone (or of the
+    balance point) on increasing ``x``; the whole profile on both sides if one is empty."""
     if kick_zone is None:
-        rear, front = x < 0.0, x > 0.0
+        k0 = k1 = 0.0
     else:
         k0, k1 = float(kick_zone[0]), float(kick_zone[1])
         if not (np.isfinite(k0) and np.isfinite(k1) and k0 < k1):
             raise InputError(f"kick_zone must be (start, end) with start < end, got {kick_zone}")
-        rear, front = x < k0, x > k1
-    if not (rear.any() and front.any()):
+    rear_end = int(np.searchsorted(x, k0, side="left"))
+    front_start = int(np.searchsorted(x, k1, side="right"))
+    if rear_end == 0 or front_start == x.size:
         # the profile lies on one side only: it rests on the lowest point of its own hull
-        rear = front = np.ones(x.size, dtype=bool)
-    return rear, front
+        return x.size, 0
+    return rear_end, front_start
 
 
 def support_line(
@@ -76,20 +77,22 @@ def support_line(
                          f"{ha.shape}")  # fmt: skip
     if not (np.all(np.isfinite(xa)) and np.all(np.isfinite(ha))):
         raise InputError("x and height must be finite")
-    rear, front = _glide_sides(xa, kick_zone)
-    ir = np.flatnonzero(rear)
-    jf = np.flatnonzero(front)
-    i = ir[np.argmin(ha[ir])]
-    j = jf[np.argmin(ha[jf])]
+    if np.any(np.diff(xa) <= 0):
+        raise InputError("x must be strictly increasing")
+    rear_end, front_start = _glide_sides(xa, kick_zone)
+    rear, front = slice(0, rear_end), slice(front_start, None)  # views: no copies per step
+    i = int(np.argmin(ha[rear]))
+    j = front_start + int(np.argmin(ha[front]))
     if i == j or xa[i] == xa[j]:
         return float(ha[i]), 0.0
-    tol = 1e-12 * max(float(np.ptp(ha)), 1e-9)
+    tol = 1e-12 * max(float(ha.max() - ha.min()), 1e-9)
     for _ in range(xa.size):
         slope = (ha[j] - ha[i]) / (xa[j] - xa[i])
-        r = ha - (ha[i] + slope * (xa - xa[i]))
-        i2 = ir[np.argmin(r[ir])]
-        j2 = jf[np.argmin(r[jf])]
-        if min(r[i2], r[j2]) >= -tol:
+        r = ha - slope * xa  # the residual to the line, up to the constant ha[i] - slope·xa[i]
+        c = ha[i] - slope * xa[i]
+        i2 = int(np.argmin(r[rear]))
+        j2 = front_start + int(np.argmin(r[front]))
+        if min(r[i2], r[j2]) - c >= -tol:
             break
         if r[i2] <= r[j2]:
             i = i2
