@@ -67,3 +67,17 @@ def test_every_json_document_is_annotated(capsys, args) -> None:
     assert main(args) == 0
     doc = json.loads(capsys.readouterr().out)
     assert {"skisnow_version", "converged", "warnings"} <= set(doc)
+
+
+def test_ctrl_c_in_a_sweep_is_130_and_says_what_was_kept(tmp_path, capsys, monkeypatch) -> None:
+    import skisnow.sweep
+
+    def interrupted(*args, **kwargs):
+        raise KeyboardInterrupt
+
+    monkeypatch.setattr(skisnow.sweep, "run_sweep", interrupted)
+    out = tmp_path / "s.zarr"
+    args = ["sweep", "--ski", "skate", "--mass-kg", "30", "--snow-modulus-mpa", "100",
+            "--workers", "0", "--out", str(out)]  # fmt: skip
+    assert main(args) == 130
+    assert "run the same command again" in capsys.readouterr().err

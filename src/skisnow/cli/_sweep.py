@@ -7,7 +7,7 @@ from typing import Annotated
 
 import typer
 
-from skisnow._errors import InputError, SkisnowError
+from skisnow._errors import InputError
 from skisnow.cli._app import app
 from skisnow.cli._render import (
     JsonOption,
@@ -113,14 +113,15 @@ def sweep(
     try:
         run = run_sweep(spec, out, scheduler=scheduler, workers=workers, on_progress=bar)
     except KeyboardInterrupt:
-        # Raised as an error (exit 1): Typer turns Ctrl-C into a *returned* 130, which
-        # ``cli.main`` does not propagate. Say what was kept.
+        # Say what was kept, and exit 130 (interrupted), as `skisnow --help` promises.
         bar.close()
         done = bar.completed
-        raise SkisnowError(
-            f"sweep interrupted (Ctrl-C); {done:g} chunks of this run are safely in {out}; run "
-            "the same command again to compute only the rest"
-        ) from None
+        typer.echo(
+            f"skisnow: sweep interrupted (Ctrl-C); {done:g} chunks of this run are safely in "
+            f"{out}; run the same command again to compute only the rest",
+            err=True,
+        )
+        raise typer.Exit(130) from None
     finally:
         bar.close()
     exported = None
