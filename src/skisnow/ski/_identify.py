@@ -67,7 +67,7 @@ __all__ = ["IdentificationResult", "identify_ski"]
 
 #: Default λ grid of the GCV search (penalty on second differences of log-EI coefficients, in
 #: units of the σ-normalised misfit).
-DEFAULT_LAMBDAS: tuple[float, ...] = (1e4, 1e3, 1e2, 1e1)
+DEFAULT_LAMBDAS: tuple[float, ...] = (1e5, 1e4, 1e3, 1e2, 1e1)
 _Z_REF = 1e-3  # [m]: scale of the z0 smoothness term
 _LAMBDA_Z = 1.0
 _LAMBDA_1 = 1.0
@@ -637,7 +637,7 @@ def identify_ski(
         sol, gcv, rss, edf, a_inv, jtj, r = fit(p, lam)
         records.append((lam, gcv, float(np.sqrt(rss / problem.n_data)), edf))
         fits.append((sol, a_inv, jtj, r))
-        p = sol.x
+        p = fits[int(np.argmin([rec[1] for rec in records]))][0].x  # next λ from the best
         say(f"λ = {lam:.3g}: GCV {gcv:.4g}, misfit rms {records[-1][2]:.3g} σ, edf {edf:.1f}")
     best = int(np.argmin([rec[1] for rec in records]))
     lam = records[best][0]
