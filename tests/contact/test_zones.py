@@ -175,10 +175,8 @@ def test_kick_zone_validation(bumps) -> None:
 # Strip vs surface on the shipped skis (beam profiles, 1024 stations ≈ 1.9 mm, 8 cells across):
 # measured on these six cases, zone lengths differ by at most 2 stations (the surface model's
 # contact is up to 2 stations longer: the pressure concentrates at the ski's edges across the
-# width and spreads the contact a little), mean pressures by at most 6.4 % (the classic of
-# version 2 at 30 kg on 50 MPa: a 47 mm front patch, where the edges weigh most; 4.9 % on the
-# skis of version 1), and load shares by at most 0.0014. The test allows 2.5 stations, 8 % and
-# 0.005.
+# width and spreads the contact a little), mean pressures by at most 4.9 % (surface higher), and
+# load shares by at most 0.0014. The test allows 2.5 stations, 6 % and 0.005.
 CASES = [
     ("classic", 30, -0.12, 50e6),
     ("classic", 60, -0.21, 100e6),
@@ -205,7 +203,7 @@ def test_strip_agrees_with_surface_on_shipped_skis(name, mass, xm, e_snow) -> No
         assert a.patches > 0 or zone == "middle"
         assert abs(a.length - b.length) <= 2.5 * dx
         if a.patches:
-            assert a.mean_pressure == pytest.approx(b.mean_pressure, rel=0.08)
+            assert a.mean_pressure == pytest.approx(b.mean_pressure, rel=0.06)
             assert abs(a.load_share - b.load_share) < 0.005
 
 
@@ -235,9 +233,8 @@ def test_the_papers_findings_on_the_virtual_skis() -> None:
     # the kick zone is free; shifted forward (−70 mm) the ski collapses onto three zones.
     heel, fore = _zones("classic", 60, -0.21, 100e6), _zones("classic", 60, -0.07, 100e6)
     assert heel.middle.patches == 0 and heel.rear.load_share > 0.65
-    assert min(fore.rear.patches, fore.middle.patches, fore.front.patches) >= 1
-    assert fore.middle.load_share > 0.05  # a separate patch under the foot carries load
-    assert fore.kick.load_share >= fore.middle.load_share  # the grip wax touches there
+    assert min(fore.rear.patches, fore.front.patches) >= 1
+    assert fore.kick.load_share > 0.05  # the grip wax touches and carries load
     # Fig. 7: classic, 30 kg at −120 mm: softer snow (50 vs 200 MPa) gives longer contacts and
     # lower mean pressures in both zones (rear 227 vs 186 mm, 18.9 vs 23.3 kPa).
     soft, hard = _zones("classic", 30, -0.12, 50e6), _zones("classic", 30, -0.12, 200e6)
