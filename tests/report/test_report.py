@@ -67,6 +67,23 @@ def test_report_numbers_are_the_solvers(report: Path) -> None:
     assert float(row.group(1)) == pytest.approx(zones.rear.length * 1e3, rel=5e-3)  # 3 digits
 
 
+def test_report_sets_the_rigid_method_against_the_flexible_ski(report: Path) -> None:
+    """The rigid-vs-flexible table holds both solvers' numbers for the same case."""
+    from skisnow.pipeline import solve_case
+
+    kw = dict(mass=60.0, load_position=-0.12, snow_modulus=100e6, profile_source="beam",
+              n_points=1024)  # fmt: skip
+    rigid = solve_case(SKI, **kw).zones.total
+    flexible = solve_case(SKI, ski_model="flexible", **kw).zones.total
+    text = report.read_text(encoding="utf-8")
+    section = text.split("The rigid-profile method against the flexible ski", 1)[1]
+    row = re.search(r"<tr><td>full \(60 kg\)</td><td>100</td><td>total</td>"
+                    r"<td>([^<]+)</td><td>([^<]+)</td>", section)  # fmt: skip
+    assert row is not None
+    assert float(row.group(1)) == pytest.approx(rigid.length * 1e3, rel=5e-3)
+    assert float(row.group(2)) == pytest.approx(flexible.length * 1e3, rel=5e-3)
+
+
 def _chromium(args: list[str], tmp: Path) -> subprocess.CompletedProcess[str]:
     assert CHROMIUM is not None
     return subprocess.run(

@@ -45,6 +45,9 @@ class SkiStudy:
         Where the loaded profiles came from and the stations along the ski.
     ski_model
         ``'rigid'`` (the paper's method) or ``'flexible'`` (the beam bent on the snow).
+    other_cases
+        The same standard loads with the other ski model (``()`` when not asked for): the
+        rigid-profile method of Kalliorinne et al. (2023) against the flexible ski.
     """
 
     ski: Any
@@ -56,6 +59,7 @@ class SkiStudy:
     profile_source: str
     n_points: int
     ski_model: str = "rigid"
+    other_cases: tuple[Case, ...] = field(default=(), repr=False)
 
 
 def standard_cases(
@@ -100,6 +104,7 @@ def study_ski(
     workers: int | None = 0,
     scheduler: str | None = None,
     ski_model: str = "rigid",
+    compare_models: bool = True,
 ) -> SkiStudy:
     """Compute what the report of ``ski`` shows (see the module docstring).
 
@@ -120,6 +125,9 @@ def study_ski(
         Loaded profiles of the cases and the maps (:func:`solve_case`).
     ski_model
         ``'rigid'`` or ``'flexible'`` for the cases and the maps (:func:`solve_case`).
+    compare_models
+        Also solve the standard loads with the other ski model (:attr:`SkiStudy.other_cases`),
+        so that the report shows how far the rigid-profile method is from the flexible ski.
     """
     from skisnow.ski import ski_metrics
     from skisnow.sweep import SweepSpec, open_sweep, run_sweep
@@ -139,20 +147,16 @@ def study_ski(
         )
         run_sweep(spec, store, workers=workers, scheduler=scheduler)
         dataset = open_sweep(store)
+    kwargs = dict(body_mass=body_mass, load_position=load_position, snows=snows,
+                  profile_source=profile_source, n_points=n_points)  # fmt: skip
+    other = "flexible" if ski_model == "rigid" else "rigid"
     return SkiStudy(
         ski=s,
         body_mass=float(body_mass),
         load_position=float(load_position),
         metrics=ski_metrics(s, body_mass=body_mass, load_position=load_position),
-        cases=standard_cases(
-            s,
-            body_mass=body_mass,
-            load_position=load_position,
-            snows=snows,
-            profile_source=profile_source,
-            n_points=n_points,
-            ski_model=ski_model,
-        ),
+        cases=standard_cases(s, ski_model=ski_model, **kwargs),
+        other_cases=standard_cases(s, ski_model=other, **kwargs) if compare_models else (),
         maps=dataset,
         profile_source=profile_source,
         n_points=int(n_points),

@@ -103,6 +103,45 @@ def _standard_loads(study: Any) -> Section:
     )
 
 
+def _rigid_vs_flexible(study: Any) -> Section | None:
+    """The standard loads by both ski models, side by side (rigid − flexible differences)."""
+    if not study.other_cases:
+        return None
+    by_model = {study.ski_model: study.cases, ("flexible" if study.ski_model == "rigid"
+                else "rigid"): study.other_cases}  # fmt: skip
+    rows = []
+    for rigid, flex in zip(by_model["rigid"], by_model["flexible"], strict=True):
+        label = "half" if rigid.mass < study.body_mass else "full"
+        for zname in ("total", "kick"):
+            zr, zf = rigid.zones[zname], flex.zones[zname]
+            if zr.patches == 0 and zf.patches == 0:
+                continue
+            rows.append((
+                f"{label} ({rigid.mass:g} kg)", rigid.snow_modulus / 1e6, zname,
+                zr.length * 1e3, zf.length * 1e3, zr.mean_pressure / 1e3, zf.mean_pressure / 1e3,
+                zr.max_pressure / 1e3, zf.max_pressure / 1e3, zr.load_share * 100,
+                zf.load_share * 100, zr.penetration * 1e6, zf.penetration * 1e6,
+            ))  # fmt: skip
+    table = Table(
+        ["load", "snow E [MPa]", "zone", "length rigid [mm]", "length flexible [mm]",
+         "mean p rigid [kPa]", "mean p flexible [kPa]", "max p rigid [kPa]",
+         "max p flexible [kPa]", "share rigid [%]", "share flexible [%]",
+         "penetration rigid [µm]", "penetration flexible [µm]"],
+        rows,
+        floatfmt=".3g",
+    )  # fmt: skip
+    return Section(
+        "The rigid-profile method against the flexible ski",
+        (
+            "Rigid: the loaded profile measured on the stone, pressed into the snow as a rigid "
+            "body (Kalliorinne et al. 2023); flexible: the beam (EI(x), z0(x)) and the snow "
+            "solved together. 'kick' is the contact between the kick-zone marks (where the grip "
+            "wax touches). Where the two differ, the paper's method is approximate (its §3.2).",
+        ),
+        (table,),
+    )
+
+
 def _contact_figures(study: Any) -> list[Figure]:
     """Contact pictures (profile, pressure, deformed snow) at half and full body weight on the
     median snow of the table."""
@@ -186,8 +225,10 @@ def build_report(
     from skisnow.report._workflows import cycle_section, fleet_section
 
     name = study.ski.name
-    sections = [_metrics_section(study), passport_section(study.ski), _standard_loads(study),
-                _maps_section(study)]  # fmt: skip
+    sections = [_metrics_section(study), passport_section(study.ski), _standard_loads(study)]
+    comparison = _rigid_vs_flexible(study)
+    sections += [comparison] if comparison is not None else []
+    sections.append(_maps_section(study))
     sections += [cycle_section(ds) for ds in cycles]
     if fleet is not None:
         sections.append(fleet_section(fleet))
