@@ -32,11 +32,16 @@ and the gap is checked on the whole grid afterwards.
 The Winkler (local) foundation, p = k·u_snow, replaces the half-space for the checks against
 Hetényi's (1946) free beam on an elastic foundation (:func:`~skisnow.contact.reference.\
 winkler_free_beam`).
+
+This module holds the problem set-up, the checks of the input, the result
+(:class:`FlexibleSolution`) and the public entry points :func:`solve_flexible` and
+:func:`solve_flexible_ski`; the operators K_snow + K_beam are in
+:mod:`skisnow.contact._coupled_operator`, the MPRGP iteration in :mod:`skisnow.contact._mprgp`
+and its restriction to the candidate cells in :mod:`skisnow.contact._flexible_candidates`.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Literal
 
@@ -44,10 +49,17 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from skisnow._errors import ConvergenceError, InputError, UnsupportedLoadError
-from skisnow.contact._beam_operator import CantileverCompliance, cantilever_compliance
+from skisnow.contact._beam_operator import cantilever_compliance
+from skisnow.contact._coupled_operator import CoupledOperator, WinklerOperator
+from skisnow.contact._flexible_candidates import (
+    CANDIDATE_MIN_CELLS,
+    CANDIDATE_WARMUP,
+    flexible_on_candidates,
+)
 from skisnow.contact._kernels import Convolution
+from skisnow.contact._mprgp import active_set_cg
 from skisnow.contact._operators import circulant_preconditioner
-from skisnow.contact._polonsky_keer import plane_fit, restore
+from skisnow.contact._polonsky_keer import restore
 from skisnow.contact._problem import DEFAULT_WIDTH, _operator, _uniform_grid
 from skisnow.contact._solver import ContactSolution
 from skisnow.contact._starts import rigid_start
@@ -62,66 +74,6 @@ __all__ = [
 #: E' [Pa] accepted by the flexible solver: from the softest snow (E ≈ 0.1 MPa) to a rigid
 #: counter-surface 10⁴ times stiffer than granite. Outside it the input is a unit slip (MPa for Pa).
 EQUIVALENT_MODULUS_RANGE: tuple[float, float] = (1e5, 1e15)
-
-
-@dataclass(frozen=True, eq=False)
-class _WinklerOperator:
-    """u = p/k on every cell (a local foundation of modulus k [Pa/m]); duck-types Convolution."""
-
-    shape: tuple[int, ...]
-    foundation: float
-
-    def __call__(self, p: np.ndarray) -> np.ndarray:
-        return np.asarray(p, dtype=np.float64) / self.foundation
-
-    def add_columns(self, out: np.ndarray, index: np.ndarray, values: np.ndarray) -> None:
-        out.reshape(-1)[index] += values / self.foundation
-
-    @property
-    def self_influence(self) -> float:
-        return 1.0 / self.foundation
-
-    def inverse(self) -> _WinklerOperator:
-        return _WinklerOperator(shape=self.shape, foundation=1.0 / self.foundation)
-
-
-@dataclass(frozen=True, eq=False)
-class _CoupledOperator:
-    """K_snow + K_beam acting on a pressure field (strip: (n,), surface: (nx, ny)) [Pa → m].
-
-    The beam sees the force of each station (pressure × cell area, summed across the width) and
-    its deflection is the same across the width. Duck-types :class:`Convolution` for the
-    Polonsky–Keer iteration (call, ``add_columns``, ``shape``, ``self_influence``).
-    """
-
-    snow: Convolution | _WinklerOperator
-    beam: CantileverCompliance
-    cell_area: float
-
-    @property
-    def shape(self) -> tuple[int, ...]:
-        return self.snow.shape
-
-    @property
-    def self_influence(self) -> float:
-        return self.snow.self_influence
-
-    def beam_part(self, p: np.ndarray) -> np.ndarray:
-        f = p.sum(axis=-1) if len(self.shape) == 2 else p
-        w = self.beam(f * self.cell_area)
-        return w[:, None] if len(self.shape) == 2 else w
-
-    def __call__(self, p: np.ndarray) -> np.ndarray:
-        p = np.asarray(p, dtype=np.float64)
-        return self.snow(p) + self.beam_part(p)
-
-    def add_columns(self, out: np.ndarray, index: np.ndarray, values: np.ndarray) -> None:
-        self.snow.add_columns(out, index, values)
-        f = np.zeros(self.beam.x.size)
-        rows = index // self.shape[1] if len(self.shape) == 2 else index
-        np.add.at(f, rows, values * self.cell_area)
-        w = self.beam(f)
-        out += w[:, None] if len(self.shape) == 2 else w
 
 
 @dataclass(frozen=True, kw_only=True, eq=False)
@@ -346,14 +298,14 @@ def solve_flexible(
         y = None
     cell_area = dx * dy
     if foundation == "winkler":
-        snow_op: Convolution | _WinklerOperator = _WinklerOperator(shape=shape, foundation=modulus)
+        snow_op: Convolution | WinklerOperator = WinklerOperator(shape=shape, foundation=modulus)
         inverse = snow_op.inverse()
     else:
         snow_op = _operator(model, shape, dx, dy, modulus, width, workers)
         inverse = circulant_preconditioner(snow_op)
-    op = _CoupledOperator(snow=snow_op, beam=beam, cell_area=cell_area)
+    op = CoupledOperator(snow=snow_op, beam=beam, cell_area=cell_area)
     if rigid:
-        op = _CoupledOperator(snow=snow_op, beam=beam, cell_area=0.0)
+        op = CoupledOperator(snow=snow_op, beam=beam, cell_area=0.0)
 
     h_line = z0 + w_boot
     h = h_line if model == "strip" else np.repeat(h_line[:, None], shape[1], axis=1)
@@ -372,22 +324,22 @@ def solve_flexible(
         p0 = rigid_start(hf, xif, total, True, snow_op.self_influence, len(shape))
     if candidates is None:
         candidates = model == "strip" and foundation == "half-space" and not rigid
-        candidates = candidates and xs.size >= _CANDIDATE_MIN_CELLS
+        candidates = candidates and xs.size >= CANDIDATE_MIN_CELLS
     result = None
     if candidates:
         # a few whole-grid steps shrink the start's support (the rigid-hull start spreads over
         # far more cells than a bending ski touches), then the candidate iteration takes over
         apply_full = lambda v: op(v.reshape(shape)).ravel()  # noqa: E731
         precond_full = lambda v: inverse(v.reshape(shape)).ravel()  # noqa: E731
-        pre = _active_set_cg(apply_full, precond_full, hf, xif, p0, tol=float(tol),
-                             max_iter=_CANDIDATE_WARMUP)  # fmt: skip
+        pre = active_set_cg(apply_full, precond_full, hf, xif, p0, tol=float(tol),
+                            max_iter=CANDIDATE_WARMUP)  # fmt: skip
         if pre[6]:
             result = pre
         else:
-            result = _on_candidates(op, inverse, hf, xif, pre[0], tol=float(tol),
-                                    max_iter=int(max_iter) - pre[4])  # fmt: skip
+            result = flexible_on_candidates(op, inverse, hf, xif, pre[0], tol=float(tol),
+                                            max_iter=int(max_iter) - pre[4])  # fmt: skip
             if result is None:  # too many candidates: go on on the whole grid from there
-                result = _active_set_cg(
+                result = active_set_cg(
                     apply_full,
                     precond_full,
                     hf,
@@ -400,7 +352,7 @@ def solve_flexible(
             result = (p_, g_, a_, b_, it_ + pre[4], pre[5] + hist_, conv_, msg_,
                       nap_ + pre[8])  # fmt: skip
     if result is None:
-        result = _active_set_cg(
+        result = active_set_cg(
             lambda v: op(v.reshape(shape)).ravel(),
             lambda v: inverse(v.reshape(shape)).ravel(),
             hf,
@@ -511,254 +463,3 @@ def solve_flexible_ski(
         width=ski.width if width is None else width,
         **options,  # type: ignore[arg-type]
     )
-
-
-# --------------------------------------------------------------------------------------------
-# the iteration: feasible active-set conjugate gradients with proportioning (MPRGP)
-# --------------------------------------------------------------------------------------------
-
-#: recompute g = K p + h from scratch every this many updates (round-off drift)
-_REFRESH = 40
-#: proportioning: release penetrating cells when their reduced gradient exceeds this multiple of
-#: the projected gradient on the free set (Dostál & Schöberl 2005, Γ = 1)
-_GAMMA = 1.0
-
-
-def _project(v: np.ndarray, xi: np.ndarray, sel: np.ndarray) -> np.ndarray:
-    """Orthogonal projection of v onto {d: d = 0 off sel, Σd = 0, Σξd = 0}."""
-    a, b = plane_fit(v, xi, sel)
-    return np.where(sel, v - a - b * xi, 0.0)
-
-
-def _clip_to_constraints(
-    p: np.ndarray, xi: np.ndarray, total: float, moment: float
-) -> np.ndarray | None:
-    """max(p, 0) put back on Σp = total, Σξp = moment by an additive plane on its support
-    (repeated while that makes cells negative); None when the support cannot carry them."""
-    q = np.maximum(p, 0.0)
-    for _ in range(10):
-        sel = q > 0.0
-        n = int(sel.sum())
-        if n < 2:
-            return None
-        xs = xi[sel]
-        sx, sxx = float(xs.sum()), float(xs @ xs)
-        det = n * sxx - sx * sx
-        if det <= 1e-12 * n * sxx:
-            return None
-        ea, eb = float(q.sum()) - total, float(xi @ q) - moment
-        b = (n * eb - sx * ea) / det
-        a = (ea - b * sx) / n
-        q = np.where(sel, q - a - b * xi, 0.0)
-        if not (q < 0.0).any():
-            return q
-        q = np.maximum(q, 0.0)
-    return None
-
-
-def _active_set_cg(
-    apply: Callable[[np.ndarray], np.ndarray],
-    precondition: Callable[[np.ndarray], np.ndarray],
-    h: np.ndarray,
-    xi: np.ndarray,
-    p0: np.ndarray,
-    *,
-    tol: float,
-    max_iter: int,
-) -> tuple[np.ndarray, np.ndarray, float, float, int, list[float], bool, str, int]:
-    """min ½⟨p, K p⟩ + ⟨p, h⟩ over p ≥ 0 with Σp and Σξp fixed (those of the feasible p0).
-
-    Preconditioned conjugate gradients on the face of the free cells F = {p > 0}, projected onto
-    the two balance constraints (so every iterate satisfies them exactly), with the feasible
-    step length of the active-set method: a step that would make a pressure negative stops at
-    the bound, drops that cell and restarts CG; cells off F whose gap is negative (reduced
-    gradient g − δ − θξ < 0) are released by a projected steepest-descent step once their
-    violation outweighs the free gradient (proportioning). This is Dostál's MPRGP (Dostál &
-    Schöberl 2005, Comput. Optim. Appl. 30) with the equality constraints kept by projection:
-    every step decreases the energy, so the iteration cannot cycle — unlike Polonsky & Keer's
-    rescaling of p after a clipped step, which stalls when the operator has the large
-    long-wave eigenvalues of a soft beam. Returns p, g = K p + h, δ, θ, iterations, history
-    of the residual, converged, message and the number of operator applications.
-    """
-    p = np.array(p0, dtype=np.float64)
-    kp = apply(p)
-    n_apply = 1
-    g = kp + h
-    energy = 0.5 * float(p @ kp) + float(p @ h)
-    total_force, total_moment = float(p.sum()), float(xi @ p)
-    scale = float(np.ptp(h)) + float(np.abs(kp).max()) + 1e-300
-    history: list[float] = []
-    d = np.zeros_like(p)
-    rz_old = 0.0
-    conj = False
-    converged, message, iterations = False, "maximum number of iterations reached", 0
-    since_refresh = 0
-    a = b = 0.0
-    for iterations in range(1, max_iter + 1):  # noqa: B007 (reported after the loop)
-        free = p > 0.0
-        a, b = plane_fit(g, xi, free)
-        reduced = g - a - b * xi  # the gap; on F its projection is the free gradient
-        r = np.where(free, reduced, 0.0)
-        chopped = np.where(~free, np.minimum(reduced, 0.0), 0.0)
-        r_norm = float(np.abs(r).max(initial=0.0))
-        c_norm = float(np.abs(chopped).max(initial=0.0))
-        residual = max(r_norm, c_norm) / scale
-        history.append(residual)
-        if residual <= tol:
-            converged, message = True, f"converged: max |gap residual| = {residual:.2e} ≤ {tol:.1e}"
-            break
-        if c_norm > _GAMMA * r_norm:
-            # proportioning: release the penetrating cells along the projected steepest descent
-            sel = free | (chopped < 0.0)
-            for _ in range(8):
-                step = -_project(precondition(_project(g, xi, sel)), xi, sel)
-                wrong = ~free & sel & (step <= 0.0)
-                if not wrong.any():
-                    break
-                sel &= ~wrong
-            conj = False
-        else:
-            z = _project(precondition(r), xi, free)
-            rz = float(r @ z)
-            d = -z + (rz / rz_old) * d if conj and rz_old > 0.0 else -z
-            rz_old = rz
-            conj = True
-            step = d
-        kd = apply(step)
-        n_apply += 1
-        curv = float(step @ kd)
-        slope = float(g @ step)
-        if not (curv > 0.0) or slope >= 0.0:
-            if conj:  # lost conjugacy (round-off): restart from the projected gradient
-                conj = False
-                continue
-            message = "no descent direction (ill-conditioned operator)"
-            break
-        alpha = -slope / curv
-        neg = step < 0.0
-        if neg.any():
-            limits = -p[neg] / step[neg]
-            alpha_f = float(limits.min())
-            if alpha_f < alpha:
-                conj = False
-                # the full step, clipped at p = 0 and put back on the balance constraints,
-                # is taken when it lowers the energy more than stopping at the first bound
-                # (a projected search: drops many cells at once instead of one per step)
-                trial = _clip_to_constraints(p + alpha * step, xi, total_force, total_moment)
-                if trial is not None:
-                    kt = apply(trial)
-                    n_apply += 1
-                    e_trial = 0.5 * float(trial @ kt) + float(trial @ h)
-                    e_bound = energy + alpha_f * slope + 0.5 * alpha_f**2 * curv
-                    if e_trial < e_bound:
-                        p, kp = trial, kt
-                        g = kp + h
-                        energy = e_trial
-                        since_refresh = 0
-                        continue
-                alpha = alpha_f
-        energy += alpha * slope + 0.5 * alpha**2 * curv
-        p += alpha * step
-        blocked = neg & (p <= 1e-14 * float(p.max()))
-        p[blocked] = 0.0
-        np.maximum(p, 0.0, out=p)
-        since_refresh += 1
-        if since_refresh >= _REFRESH:
-            kp = apply(p)
-            n_apply += 1
-            g = kp + h
-            energy = 0.5 * float(p @ kp) + float(p @ h)
-            since_refresh = 0
-        else:
-            g += alpha * kd
-    free = p > 0.0
-    kp = apply(p)
-    n_apply += 1
-    g = kp + h
-    a, b = plane_fit(g, xi, free)
-    return p, g, a, b, iterations, history, converged, message, n_apply
-
-
-#: grids shorter than this are solved whole; candidate sets larger than _CANDIDATE_MAX (or
-#: than _CANDIDATE_FRACTION of the grid) too: a dense block costs more than the FFT there
-_CANDIDATE_MIN_CELLS = 1024
-_CANDIDATE_MAX = 700
-_CANDIDATE_FRACTION = 0.5
-#: candidates: cells whose estimated gap is below this fraction of the largest snow
-#: displacement (the whole-grid check afterwards adds any cell that was missed)
-_CANDIDATE_MARGIN = 0.2
-#: whole-grid steps before the candidate iteration
-_CANDIDATE_WARMUP = 6
-
-
-def _on_candidates(
-    op: _CoupledOperator,
-    inverse: Convolution,
-    h: np.ndarray,
-    xi: np.ndarray,
-    p0: np.ndarray,
-    *,
-    tol: float,
-    max_iter: int,
-) -> tuple[np.ndarray, np.ndarray, float, float, int, list[float], bool, str, int] | None:
-    """:func:`_active_set_cg` on the candidate contact cells S of a strip grid.
-
-    As p = 0 off S, the iteration on S with the dense blocks K_SS (snow Toeplitz rows plus the
-    beam's block) and the snow preconditioner restricted to S is the whole-grid iteration as long
-    as no cell off S enters the contact. The gap is checked on the whole grid afterwards (one
-    application of the full operator); cells that penetrate are added, with every cell whose gap
-    is below the margin, and the iteration resumes from the pressure found. Returns None when the
-    candidates are too many for a dense block (then the caller iterates on the whole grid).
-    """
-    from skisnow.contact._operators import RestrictedOperator
-
-    snow = op.snow
-    assert isinstance(snow, Convolution)
-    n = h.size
-    p = np.array(p0, dtype=np.float64)
-    n_apply = 0
-    iterations, history = 0, []
-
-    def full_gap(p: np.ndarray) -> tuple[np.ndarray, float]:
-        nonlocal n_apply
-        u_s = snow(p)
-        g = u_s + op.beam(p * op.cell_area) + h
-        n_apply += 1
-        a, b = plane_fit(g, xi, p > 0)
-        return g - a - b * xi, float(np.abs(u_s).max()) + 1e-300
-
-    gap, u_max = full_gap(p)
-    cand = (p > 0) | (gap < _CANDIDATE_MARGIN * u_max)
-    for _ in range(6):
-        cells = np.flatnonzero(cand)
-        if cells.size > min(_CANDIDATE_MAX, _CANDIDATE_FRACTION * n) or cells.size < 2:
-            return None
-        rest = RestrictedOperator.build(snow, cells, dense=True)
-        assert rest.matrix is not None
-        k_ss = rest.matrix + op.beam.block(cells) * op.cell_area
-        m_ss = rest.preconditioner(inverse).matrix
-        assert m_ss is not None
-        ps, _, a, b, it, hist, converged, message, nap = _active_set_cg(
-            lambda v: k_ss @ v,  # noqa: B023 (used within this pass)
-            lambda v: m_ss @ v,  # noqa: B023
-            h[cells],
-            xi[cells],
-            p[cells],
-            tol=tol,
-            max_iter=max_iter - iterations,
-        )
-        iterations += it
-        history += hist
-        n_apply += nap
-        p = np.zeros(n)
-        p[cells] = ps
-        if not converged:
-            return None
-        gap, u_max = full_gap(p)
-        scale = float(np.ptp(h)) + u_max
-        missed = (p == 0.0) & (gap < -tol * scale)
-        if not missed.any():
-            g = gap + plane_fit(gap, xi, p > 0)[0]  # (only δ, θ are used by the caller)
-            return p, g, a, b, iterations, history, True, message, n_apply
-        cand |= missed | (gap < _CANDIDATE_MARGIN * u_max)
-    return None
