@@ -12,6 +12,7 @@ import pytest
 
 from skisnow import InputError
 from skisnow.ski import _identify as ident
+from skisnow.ski import _identify_fit as ident_fit
 from skisnow.ski import read_ski, run_bench
 from skisnow.ski._shipped import build_shipped
 
@@ -41,14 +42,14 @@ def _problem(bench, **kw):
         captured["fun"], captured["p0"], captured["jac"] = fun, p0, _["jac"]
         raise Stop
 
-    orig = ident.least_squares
-    ident.least_squares = capture
+    orig = ident_fit.least_squares
+    ident_fit.least_squares = capture
     try:
         ident.identify_ski(bench, **kw)
     except Stop:
         pass
     finally:
-        ident.least_squares = orig
+        ident_fit.least_squares = orig
     return captured
 
 

@@ -1,0 +1,304 @@
+"""The forward model of the ski identification: the bench beam, its spline parameters, its Jacobian.
+
+The bench itself (Kalliorinne et al. 2023, §3.1, eq. 1 h = f(x, m, x_m)) as a function of the
+parameters of :func:`~skisnow.ski.identify_ski`: an Euler–Bernoulli beam with stiffness EI(x) and
+stress-free shape z0(x), free-floating in unilateral contact with the rigid stone, loaded by m·g
+through the boot plate at x_m (:mod:`skisnow.ski._beam`, same Hermite elements and exact LCP).
+This module holds the binned data of a load case, the cubic B-spline parametrisation (log EI and
+z0 on uniform knots, z0 without its linear part, which the bench cannot see) and the residuals of
+all load cases with their exact Jacobian by the tangent of the beam at its active set (one banded
+solve per stiffness parameter and one small KKT solve per load case), plus the penalty rows of
+the regularisation. The fit itself is in :mod:`skisnow.ski._identify_fit`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+from scipy.interpolate import BSpline
+from scipy.linalg import solveh_banded
+from scipy.sparse import csr_matrix
+
+from skisnow._errors import ConvergenceError
+from skisnow.ski._fem import (
+    _GAUSS4_W,
+    _GAUSS4_X,
+    banded_upper,
+    shape_functions,
+)
+from skisnow.ski._lcp import BeamLcp, lower_hull_bracket
+
+_Z_REF = 1e-3  # [m]: scale of the z0 smoothness term
+_LAMBDA_Z = 1.0
+_LAMBDA_1 = 1.0
+
+
+# --------------------------------------------------------------------------- data
+
+
+@dataclass(frozen=True)
+class _Case:
+    mass: float
+    position: float
+    x: NDArray[np.float64]  # bin centres [m]
+    h: NDArray[np.float64]  # bin means [m]
+    w: NDArray[np.float64]  # sqrt(count)
+    force: float
+    f_boot: NDArray[np.float64]  # (2n,)
+    f_total: float
+    m_total: float
+    hermite: Any  # sparse (n_bins, 2n)
+
+
+def _bins(x: NDArray[np.float64], h: NDArray[np.float64], width: float):
+    """Bin means (x̄, h̄, count) and the scatter about a straight line inside each bin (the
+    profile's slope removed; its curvature changes h by < 0.1 µm across 5 mm): sum of squares
+    and degrees of freedom (count - 2 per bin of >= 3 samples)."""
+    key = np.floor(x / width + 1e-9).astype(np.int64)
+    _, inv, counts = np.unique(key, return_inverse=True, return_counts=True)
+    xs = np.bincount(inv, weights=x) / counts
+    hs = np.bincount(inv, weights=h) / counts
+    dx, dh = x - xs[inv], h - hs[inv]
+    sxx = np.bincount(inv, weights=dx * dx)
+    sxh = np.bincount(inv, weights=dx * dh)
+    slope = np.divide(sxh, sxx, out=np.zeros_like(sxh), where=sxx > 0)
+    ss = np.bincount(inv, weights=(dh - slope[inv] * dx) ** 2)
+    dof = np.where(counts >= 3, counts - 2, 0)
+    ss = np.where(counts >= 3, ss, 0.0)
+    return xs, hs, counts.astype(float), float(ss.sum()), int(dof.sum())
+
+
+def _hermite_matrix(nodes: NDArray[np.float64], x: NDArray[np.float64]) -> Any:
+    n = nodes.size
+    e = np.clip(np.searchsorted(nodes, x, side="right") - 1, 0, n - 2)
+    le = nodes[e + 1] - nodes[e]
+    nsh = shape_functions((x - nodes[e]) / le, le)  # (m, 4)
+    rows = np.repeat(np.arange(x.size), 4)
+    cols = (2 * e[:, None] + np.arange(4)[None, :]).ravel()
+    return csr_matrix((nsh.ravel(), (rows, cols)), shape=(x.size, 2 * n))
+
+
+# --------------------------------------------------------------------------- splines
+
+
+def _uniform_bspline(x0: float, x1: float, n_coef: int) -> tuple[NDArray[np.float64], float]:
+    """Knots of a cubic B-spline with ``n_coef`` coefficients on uniform knots whose base
+    interval is [x0, x1] (basis functions extend beyond: linear functions have linear
+    coefficients, Marsden's identity)."""
+    h = (x1 - x0) / (n_coef - 3)
+    t = x0 + h * np.arange(-3, n_coef + 1)
+    return t, h
+
+
+def _design(t: NDArray[np.float64], x: NDArray[np.float64]) -> NDArray[np.float64]:
+    lo, hi = t[3], t[-4]
+    xc = np.clip(x, lo, np.nextafter(hi, lo))  # the base interval is right-open
+    return BSpline.design_matrix(xc, t, 3).toarray()
+
+
+def _second_differences(n: int) -> NDArray[np.float64]:
+    d = np.zeros((n - 2, n))
+    for i in range(n - 2):
+        d[i, i : i + 3] = (1.0, -2.0, 1.0)
+    return d
+
+
+# --------------------------------------------------------------------------- the model
+
+
+class _Problem:
+    """The bench sequence and the discretised beam; evaluates residuals and their Jacobian."""
+
+    def __init__(
+        self,
+        cases: list[_Case],
+        nodes: NDArray[np.float64],
+        n_stiffness: int,
+        n_camber: int,
+        sigma: float,
+    ) -> None:
+        self.cases = cases
+        self.nodes = nodes
+        n = nodes.size
+        self.n = n
+        self.clamp = int(np.argmin(np.abs(nodes)))
+        self.sigma = sigma
+        x0, x1 = float(nodes[0]), float(nodes[-1])
+        self.t_e, _ = _uniform_bspline(x0, x1, n_stiffness)
+        self.t_z, _ = _uniform_bspline(x0, x1, n_camber)
+        self.n_e, self.n_z = n_stiffness, n_camber
+        # Gauss points of every element, and the B-spline of log EI there
+        le = np.diff(nodes)[:, None]
+        self.le = le
+        xq = nodes[:-1, None] + le * _GAUSS4_X[None, :]
+        self.phi_q = _design(self.t_e, xq.ravel()).reshape(n - 1, 4, n_stiffness)
+        xi = _GAUSS4_X[None, :]
+        self.bq = np.stack(
+            [
+                (-6.0 + 12.0 * xi) / le**2,
+                (-4.0 + 6.0 * xi) / le,
+                (6.0 - 12.0 * xi) / le**2,
+                (-2.0 + 6.0 * xi) / le,
+            ],
+            axis=-1,
+        )  # fmt: skip  (n_el, nq, 4): curvature per DOF
+        self.wq = _GAUSS4_W[None, :] * le  # (n_el, nq)
+        # z0: basis at nodes and at the bins; gauge: no linear part
+        self.phi_z_nodes = _design(self.t_z, nodes)
+        greville = (self.t_z[1:-3] + self.t_z[2:-2] + self.t_z[3:-1]) / 3.0
+        lin = np.stack([np.ones(n_camber), greville], axis=1)
+        q, _ = np.linalg.qr(lin, mode="complete")
+        self.q_z = q[:, 2:]  # (n_z, n_z - 2), orthogonal to linear coefficient vectors
+        self.lin_z = lin
+        self.q_z_nodes = self.phi_z_nodes @ self.q_z
+        self.phi_z_cases = [_design(self.t_z, c.x) for c in cases]
+        self.q_z_cases = [phi @ self.q_z for phi in self.phi_z_cases]  # ∂z0(x̄)/∂φ per case
+        self.d2_e = _second_differences(n_stiffness)
+        self.d2_z = _second_differences(n_camber) / _Z_REF
+        self.n_params = n_stiffness + n_camber - 2
+        self.warm: list[NDArray[np.float64] | None] = [None] * len(cases)
+        self.warm_active: list[NDArray[np.bool_] | None] = [None] * len(cases)
+        self.n_data = int(sum(c.x.size for c in cases))
+
+    # -- parameters
+    def split(self, p: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+        return p[: self.n_e], self.q_z @ p[self.n_e :]
+
+    def ei_at(self, theta_e: NDArray[np.float64], x: NDArray[np.float64]) -> NDArray[np.float64]:
+        return np.exp(_design(self.t_e, x) @ theta_e)
+
+    def z0_at(self, theta_z: NDArray[np.float64], x: NDArray[np.float64]) -> NDArray[np.float64]:
+        return _design(self.t_z, x) @ theta_z
+
+    # -- beam
+    def _stiffness(self, theta_e: NDArray[np.float64]):
+        ei_q = np.exp(self.phi_q @ theta_e)  # (n_el, nq)
+        w = (self.wq * ei_q)[..., None, None]
+        ke = np.sum(w * self.bq[..., :, None] * self.bq[..., None, :], axis=1)
+        ab = banded_upper(ke, self.n)
+        for dof in (2 * self.clamp, 2 * self.clamp + 1):
+            ab[:, dof] = 0.0
+            for j in range(dof, min(dof + 4, 2 * self.n)):
+                ab[3 + dof - j, j] = 0.0
+            ab[3, dof] = 1.0
+        return ab, ei_q
+
+    def _clamp(self, f: NDArray[np.float64]) -> NDArray[np.float64]:
+        f = f.copy()
+        f[2 * self.clamp : 2 * self.clamp + 2] = 0.0
+        return f
+
+    def evaluate(
+        self, p: NDArray[np.float64], *, jacobian: bool, cases: Sequence[int] | None = None
+    ) -> tuple[NDArray[np.float64], NDArray[np.float64] | None]:
+        """σ-normalised weighted residuals (model - data) of the chosen cases, and their
+        Jacobian (rows of all bins, columns of p) if asked."""
+        theta_e, theta_z = self.split(p)
+        theta_e = np.clip(theta_e, -10.0, 25.0)  # coefficients of log EI: no overflow
+        ab, ei_q = self._stiffness(theta_e)
+        n = self.n
+        rhs = np.zeros((2 * n, n))
+        rhs[2 * np.arange(n), np.arange(n)] = 1.0
+        rhs[2 * self.clamp, self.clamp] = 0.0
+        flex_full = solveh_banded(ab, rhs, check_finite=False)
+        flex = flex_full[0::2, :]
+        flex = 0.5 * (flex + flex.T)
+        z0n = self.phi_z_nodes @ theta_z
+        idx_cases = range(len(self.cases)) if cases is None else cases
+        res_parts, jac_parts = [], []
+        f_all = np.stack([self._clamp(self.cases[k].f_boot) for k in idx_cases], axis=1)
+        u_boot_all = solveh_banded(ab, f_all, check_finite=False)
+        for col, k in enumerate(idx_cases):
+            c = self.cases[k]
+            u_boot = u_boot_all[:, col]
+            g = z0n + u_boot[0::2]
+            href = max(float(np.ptp(z0n)), 1e-3)
+            lcp = BeamLcp(flex=flex, g=g, x=self.nodes, f_total=c.f_total, m_total=c.m_total,
+                       tol_r=1e-10 * c.force, tol_h=1e-10 * href)  # fmt: skip
+            ok = False
+            prev = self.warm_active[k]
+            if prev is not None and prev.sum() >= 2:  # a few block exchanges from the last set
+                sol_ = lcp.block_pivoting(prev, max_iterations=6)
+                ok = sol_.converged
+            r0 = self.warm[k]
+            if ok:
+                pass
+            elif r0 is None or np.any(r0 < 0):
+                r0 = np.zeros(n)
+                xc = c.m_total / c.f_total
+                i, j = lower_hull_bracket(self.nodes, g, xc)
+                r0[i] = c.f_total * (self.nodes[j] - xc) / (self.nodes[j] - self.nodes[i])
+                r0[j] = c.f_total * (xc - self.nodes[i]) / (self.nodes[j] - self.nodes[i])
+            if not ok:
+                sol_ = lcp.primal_active_set(r0, 500)
+                ok = sol_.converged
+            if not ok:
+                raise ConvergenceError(
+                    f"beam contact of load case m = {c.mass:g} kg, x_m = {c.position * 1e3:g} mm "
+                    "did not converge during the identification"
+                )
+            active, r, a, b = sol_.active, sol_.reactions, sol_.translation, sol_.rotation
+            self.warm[k] = r
+            self.warm_active[k] = active.copy()
+            act = np.flatnonzero(active)
+            u = u_boot + flex_full[:, act] @ r[act]
+            hmod = self.phi_z_cases[k] @ theta_z + a + b * c.x + c.hermite @ u
+            res_parts.append(c.w * (hmod - c.h) / self.sigma)
+            if not jacobian:
+                continue
+            # tangent: K du = E_A dr - dK u ; gap rows; balances
+            na = act.size
+            kkt = np.zeros((na + 2, na + 2))
+            kkt[:na, :na] = flex[np.ix_(act, act)]
+            kkt[:na, na] = 1.0
+            kkt[:na, na + 1] = self.nodes[act]
+            kkt[na, :na] = 1.0
+            kkt[na + 1, :na] = self.nodes[act]
+            # dK/dθ_j u: curvature at Gauss points
+            ue = np.stack([u[0:-2:2], u[1:-2:2], u[2::2], u[3::2]], axis=1)  # (n_el, 4)
+            kappa = np.einsum("eqa,ea->eq", self.bq, ue)
+            coef = self.wq * ei_q * kappa  # (n_el, nq)
+            contrib = np.einsum("eq,eqa,eqj->eaj", coef, self.bq, self.phi_q)  # (n_el, 4, nE)
+            g_mat = np.zeros((2 * n, self.n_e))
+            for a_ in range(4):
+                np.add.at(g_mat, 2 * np.arange(n - 1) + a_, contrib[:, a_, :])
+            g_mat[2 * self.clamp : 2 * self.clamp + 2] = 0.0
+            v = solveh_banded(ab, g_mat, check_finite=False)  # K^-1 dK u  (2n, nE)
+            rhs_e = np.zeros((na + 2, self.n_e))
+            rhs_e[:na] = v[2 * act]
+            phi_za = self.q_z_nodes[act]  # (na, nφ)
+            rhs_z = np.zeros((na + 2, self.n_z - 2))
+            rhs_z[:na] = -phi_za
+            sol = np.linalg.lstsq(kkt, np.concatenate([rhs_e, rhs_z], axis=1), rcond=None)[0]
+            dr, da, db = sol[:na], sol[na], sol[na + 1]
+            du = flex_full[:, act] @ dr  # (2n, nP)
+            du[:, : self.n_e] -= v
+            dh = c.hermite @ du + da[None, :] + c.x[:, None] * db[None, :]
+            dh[:, self.n_e :] += self.q_z_cases[k]
+            jac_parts.append((c.w / self.sigma)[:, None] * dh)
+        res = np.concatenate(res_parts)
+        jac = np.concatenate(jac_parts) if jacobian else None
+        return res, jac
+
+    def penalty_matrix(self, lam: float) -> NDArray[np.float64]:
+        """Rows of the penalty residual sqrt(λ) D₂ θ_E, sqrt(λ₁) D₁ θ_E, sqrt(λ_z) D₂ θ_z / z_ref
+        (linear in p). The weak first-difference term (λ₁ = 1) fixes the log-EI trend where
+        the bench carries no bending moment (the free overhangs): there the data leave log EI
+        undetermined, and without it a Gauss–Newton step runs off along that null direction."""
+        rows_e = np.sqrt(lam) * np.concatenate(
+            [self.d2_e, np.zeros((self.n_e - 2, self.n_z - 2))], axis=1
+        )
+        d1 = np.diff(np.eye(self.n_e), axis=0)
+        rows_e = np.concatenate(
+            [rows_e, np.sqrt(_LAMBDA_1) * np.concatenate(
+                [d1, np.zeros((self.n_e - 1, self.n_z - 2))], axis=1)],
+            axis=0,
+        )  # fmt: skip
+        rows_z = np.sqrt(_LAMBDA_Z) * np.concatenate(
+            [np.zeros((self.n_z - 2, self.n_e)), self.d2_z @ self.q_z], axis=1
+        )
+        return np.concatenate([rows_e, rows_z], axis=0)
