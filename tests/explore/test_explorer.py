@@ -202,3 +202,21 @@ def test_page_in_a_real_browser(dataset, tmp_path: Path) -> None:
         assert errors == []
     finally:
         driver.quit()
+
+
+def test_cli_writes_a_page_and_refuses_bad_options(tmp_path: Path, capsys) -> None:
+    import json
+
+    from skisnow.cli import main
+
+    out = tmp_path / "e.html"
+    args = ["explore", "skate", "--mass-kg", "30,60", "--load-position-mm", "-120",
+            "--snow-modulus-mpa", "100", "--out", str(out), "--json"]  # fmt: skip
+    assert main(args) == 0
+    doc = json.loads(capsys.readouterr().out)
+    assert doc["points"] == 2 and doc["converged"] is True and out.stat().st_size > 10_000
+    assert main([*args, "--ski-model", "stiff"]) == 2
+    assert "--ski-model" in capsys.readouterr().err
+    assert main([*args, "--stations", "500"]) == 2  # must divide the 4096 solver stations
+    assert main(["explore", "no-such-ski", "--out", str(tmp_path / "x.html")]) == 2
+    assert not (tmp_path / "x.html").exists()

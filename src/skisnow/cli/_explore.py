@@ -72,16 +72,20 @@ def explore(
         )
     seconds = time.perf_counter() - start
     size_mb = out.stat().st_size / 1e6
+    n_ok, n_all = int(ds["converged"].sum()), int(ds["converged"].size)
     if json_out:
         emit_json(
             {
                 "path": str(out),
                 "size_mb": size_mb,
                 "seconds": seconds,
-                "points": int(ds.converged.size),
+                "points": n_all,
+                # a map's corner whose load the ski cannot carry is not solved (shown greyed)
+                "points_converged": n_ok,
+                "converged": n_ok == n_all,
             }
         )
     else:
         err_console.print(
-            f"wrote {out} ({size_mb:.2f} MB, {ds.converged.size} points, {seconds:.1f} s)"
+            f"wrote {out} ({size_mb:.2f} MB, {n_all} points, {n_ok} converged, {seconds:.1f} s)"
         )
