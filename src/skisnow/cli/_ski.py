@@ -10,9 +10,7 @@ import typer
 from skisnow._errors import InputError
 from skisnow._values import parse_values
 from skisnow.cli._app import app
-from skisnow.cli._render import emit_json, print_table, progress_bar
-
-_JSON = typer.Option(False, "--json", help="Print one JSON document to stdout, nothing else.")
+from skisnow.cli._render import JsonOption, emit_json, print_table, progress_bar
 
 
 def resolve_profile_source(option: str, skis: list[str]) -> str:
@@ -35,12 +33,7 @@ def ski_summary_rows(skis: list[str] | None = None) -> list[dict[str, Any]]:
         kz = ski.kick_zone
         rows.append(
             {
-                "ski": ski.name,
-                "kind": ski.kind,
-                "length_mm": ski.length * 1e3,
-                "width_mm": ski.width * 1e3,
-                "x_tail_mm": ski.x_tail * 1e3,
-                "x_tip_mm": ski.x_tip * 1e3,
+                **ski.summary_mm(),
                 "kick_zone_mm": None if kz is None else [kz[0] * 1e3, kz[1] * 1e3],
                 "free_camber_at_balance_point_mm": float(ski.free_camber(0.0)) * 1e3,
                 "stiffness_at_balance_point_n_m2": float(ski.stiffness(0.0)),
@@ -74,7 +67,7 @@ def skis(
         float,
         typer.Option("--load-position-mm", help="With --show: load position of the metrics [mm]."),
     ] = -80.0,
-    json_out: bool = _JSON,
+    json_out: JsonOption = False,
 ) -> None:
     """List the shipped skis, or show one ski's passport (EI(x), z0(x), bands, metrics)."""
     if show is None:
@@ -171,7 +164,7 @@ def bench(
     noise_mm: float = typer.Option(0.0, "--noise-mm", help="Height noise std [mm] (e.g. 0.01)."),
     seed: int | None = typer.Option(None, "--seed", help="Seed of the noise."),
     dx_mm: float = typer.Option(1.0, "--dx-mm", help="Sampling step along the ski [mm]."),
-    json_out: bool = _JSON,
+    json_out: JsonOption = False,
 ) -> None:
     """Run the virtual camber bench on a shipped ski and write the bench table."""
     from skisnow._checks import check_memory, check_option_values, check_value
@@ -264,7 +257,7 @@ def metrics(
     load_position_mm: float = typer.Option(
         -80.0, "--load-position-mm", help="Load position from the balance point [mm]."
     ),
-    json_out: bool = _JSON,
+    json_out: JsonOption = False,
 ) -> None:
     """Practitioners' metrics: camber, wax pocket, closing load, stiffness, contact lengths."""
     docs = metrics_documents(source, body_mass_kg=body_mass_kg, load_position_mm=load_position_mm)

@@ -134,12 +134,7 @@ def run_bench(
         }
     )
     metadata = {
-        "ski": ski.name,
-        "kind": ski.kind,
-        "length_mm": ski.length * 1e3,
-        "width_mm": ski.width * 1e3,
-        "x_tail_mm": ski.x_tail * 1e3,
-        "x_tip_mm": ski.x_tip * 1e3,
+        **ski.summary_mm(),
         "balance_point": "x_mm = 0; x_mm and load_position_mm positive toward the tip",
         "kick_zone_mm": None if ski.kick_zone is None else [v * 1e3 for v in ski.kick_zone],
         "source": "virtual bench: skisnow Euler-Bernoulli beam on a rigid plane",

@@ -212,6 +212,21 @@ class Ski:
         """Length of the running surface [m] (x_tip - x_tail)."""
         return self.x_tip - self.x_tail
 
+    def summary_mm(self) -> dict[str, Any]:
+        """Name, kind and running-surface geometry in the units of tables and files (mm).
+
+        The keys ``ski``, ``kind``, ``length_mm``, ``width_mm``, ``x_tail_mm``, ``x_tip_mm``
+        that the ski table of the CLI and the metadata of a virtual bench share.
+        """
+        return {
+            "ski": self.name,
+            "kind": self.kind,
+            "length_mm": self.length * 1e3,
+            "width_mm": self.width * 1e3,
+            "x_tail_mm": self.x_tail * 1e3,
+            "x_tip_mm": self.x_tip * 1e3,
+        }
+
     def _check_x(self, x: ArrayLike) -> NDArray[np.float64]:
         xa = np.asarray(x, dtype=float)
         tol = 1e-9
