@@ -373,8 +373,10 @@ def _flexible_case(
         initial_pressure=start,
         tol=tol,
         workers=workers,
+        raise_on_failure=False,
     )
     solution = flex.contact
+    notes = () if flex.converged else (f"flexible solve did not converge: {solution.message}",)
     zones = contact_zones(solution, kick_zone=s.kick_zone)
     height = solution.height if solution.height.ndim == 1 else solution.height[:, 0]
     return Case(
@@ -393,8 +395,8 @@ def _flexible_case(
         height=np.asarray(height),
         solution=solution,
         zones=zones,
-        converged=bool(solution.converged),
-        warnings=(),
+        converged=bool(flex.converged),
+        warnings=notes,
         ski_model="flexible",
         flexible=flex,
     )

@@ -128,54 +128,24 @@ def solve_loaded(
 
     ``route`` ``'network'``/``'beam'``: the rigid loaded profile ``height`` through
     :func:`skisnow.pipeline.solve_case` (the paper's method). ``'flexible'``: the free
-    Euler–Bernoulli ski and the half-space solved together
-    (:func:`skisnow.contact.solve_flexible`, the boot load spread as on the virtual bench;
-    ``height`` is not used), returned as a :class:`~skisnow.pipeline.Case` whose ``height`` is
-    the bent ski z0 + w.
+    Euler–Bernoulli ski and the half-space solved together, through
+    ``solve_case(..., ski_model="flexible")`` on the same stations (``height`` is not used);
+    the :class:`~skisnow.pipeline.Case`'s ``height`` is the bent ski z0 + w.
 
     Returns the :class:`~skisnow.pipeline.Case`.
     """
-    from skisnow.pipeline import Case, solve_case
+    from skisnow.pipeline import solve_case
 
     if route == "flexible":
-        from skisnow.constants import STANDARD_GRAVITY
-        from skisnow.contact import contact_zones, effective_modulus, solve_flexible
-
-        ski = fs.ski
-        modulus = effective_modulus(float(snow_modulus))
-        flex = solve_flexible(
-            x,
-            ski.free_camber(x),
-            ski.stiffness(x),
-            load=float(mass) * STANDARD_GRAVITY,
-            load_position=float(load_position),
-            modulus=modulus,
-            width=ski.width,
-            initial_pressure=start,
-            raise_on_failure=False,
-        )
-        sol = flex.contact
-        notes = () if flex.converged else (f"flexible solve did not converge: {sol.message}",)
-        return Case(
-            ski=ski,
-            label=ski.name,
+        return solve_case(
+            fs.ski,
             mass=float(mass),
             load_position=float(load_position),
             snow_modulus=float(snow_modulus),
-            model="strip",
-            profile_source="flexible",
             n_points=int(x.size),
-            modulus=float(modulus),
-            width=float(ski.width),
-            kick_zone=ski.kick_zone,
-            x=x,
-            height=sol.height,
-            solution=sol,
-            zones=contact_zones(sol, kick_zone=ski.kick_zone),
-            converged=bool(flex.converged),
-            warnings=notes,
+            start=start,
+            ski_model="flexible",
         )
-
     return solve_case(
         fs.ski,
         mass=float(mass),
