@@ -9,7 +9,13 @@ from typing import Annotated
 import typer
 
 from skisnow.cli._app import app
-from skisnow.cli._render import ProfileSourceOption, emit_json, err_console, progress_bar
+from skisnow.cli._render import (
+    JsonOption,
+    ProfileSourceOption,
+    emit_json,
+    err_console,
+    progress_bar,
+)
 
 
 @app.command()
@@ -39,7 +45,7 @@ def explore(
             "(a switch on the page).",
         ),
     ] = "rigid",
-    json_out: Annotated[bool, typer.Option("--json", help="Print one JSON document.")] = False,
+    json_out: JsonOption = False,
 ) -> None:
     """Write an interactive explorer page: sliders for mass, load position and snow modulus.
 

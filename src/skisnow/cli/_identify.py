@@ -10,7 +10,7 @@ import typer
 
 from skisnow._errors import InputError
 from skisnow.cli._app import app
-from skisnow.cli._render import emit_json, err_console, print_table
+from skisnow.cli._render import JsonOption, emit_json, err_console, print_table
 
 
 @app.command()
@@ -50,7 +50,7 @@ def identify(
         Path | None,
         typer.Option("--figure", help="Save the passport figure (png/svg/pdf by suffix)."),
     ] = None,
-    json_out: Annotated[bool, typer.Option("--json", help="Print one JSON document.")] = False,
+    json_out: JsonOption = False,
 ) -> None:
     """Identify EI(x) and z0(x) from a whole bench sequence (beam on the stone, least squares)."""
     from skisnow.io import read_bench

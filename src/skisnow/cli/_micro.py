@@ -12,11 +12,9 @@ import typer
 from skisnow._errors import InputError
 from skisnow._values import parse_values, sorted_unique
 from skisnow.cli._app import app, report_domain_warnings
-from skisnow.cli._render import console, emit_json, print_table, progress_bar
+from skisnow.cli._render import JsonOption, console, emit_json, print_table, progress_bar
 
 __all__ = ["parse_grain_range"]
-
-_JSON = typer.Option("--json", help="Print one JSON document to stdout, nothing else.")
 
 
 def parse_grain_range(text: str) -> np.ndarray:
@@ -79,7 +77,7 @@ def topo(
     form: Annotated[str, _FORM] = "plane",
     pixel_um: Annotated[float | None, _PIXEL] = None,
     height_unit: Annotated[str, _HUNIT] = "m",
-    json_out: Annotated[bool, _JSON] = False,
+    json_out: JsonOption = False,
     figure: Annotated[
         Path | None, typer.Option("--figure", help="Save the height map (PNG/SVG by suffix).")
     ] = None,
@@ -139,7 +137,7 @@ def grind(
     ] = 1000.0,
     pixel_um: Annotated[float, typer.Option("--pixel-um", help="Pixel size [µm].")] = 1.0,
     seed: Annotated[int, typer.Option("--seed", help="Random seed (grit, depth jitter).")] = 0,
-    json_out: Annotated[bool, _JSON] = False,
+    json_out: JsonOption = False,
 ) -> None:
     """Write a synthetic grinding structure (seeded)."""
     from skisnow import micro
@@ -198,7 +196,7 @@ def bearing(
     pixel_um: Annotated[float | None, _PIXEL] = None,
     height_unit: Annotated[str, _HUNIT] = "m",
     seed: Annotated[int, typer.Option("--seed", help="Seed of a preset.")] = 0,
-    json_out: Annotated[bool, _JSON] = False,
+    json_out: JsonOption = False,
     figure: Annotated[
         Path | None, typer.Option("--figure", help="Save A_fr(D) (PNG/SVG by suffix).")
     ] = None,
@@ -335,7 +333,7 @@ def rank(
         ),
     ] = False,
     alpha: Annotated[float, typer.Option("--alpha", help="Significance level.")] = 0.05,
-    json_out: Annotated[bool, _JSON] = False,
+    json_out: JsonOption = False,
 ) -> None:
     """Rank structures by glide time; Pearson r of every descriptor (eq. 10) with significance."""
     from skisnow import micro

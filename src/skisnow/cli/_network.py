@@ -10,9 +10,7 @@ import typer
 
 from skisnow._errors import InputError
 from skisnow.cli._app import app, report_domain_warnings
-from skisnow.cli._render import emit_json, err_console, print_table, progress_bar
-
-_JSON = typer.Option(False, "--json", help="Print one JSON document to stdout, nothing else.")
+from skisnow.cli._render import JsonOption, emit_json, err_console, print_table, progress_bar
 
 
 def _resolve_model(model: str) -> Any:
@@ -45,7 +43,7 @@ def train(
     adam_steps: int = typer.Option(600, "--adam-steps", help="Adam steps (first phase)."),
     lm_steps: int = typer.Option(200, "--lm-steps", help="Max Levenberg-Marquardt steps."),
     ensemble: int = typer.Option(1, "--ensemble", help="Number of members (spread = uncertainty)."),
-    json_out: bool = _JSON,
+    json_out: JsonOption = False,
 ) -> None:
     """Train the camber network h = f(x, m, x_m) on a bench file and save it."""
     from skisnow.io import read_bench
@@ -122,7 +120,7 @@ def predict(
     figure: Annotated[
         Path | None, typer.Option("--figure", help="Save a profile figure (png/pdf).")
     ] = None,
-    json_out: bool = _JSON,
+    json_out: JsonOption = False,
 ) -> None:
     """Predict the loaded camber profile h(x) with a trained network.
 

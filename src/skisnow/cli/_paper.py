@@ -5,9 +5,7 @@ from __future__ import annotations
 import typer
 
 from skisnow.cli._app import app
-from skisnow.cli._render import console, emit_json, print_table
-
-_JSON = typer.Option(False, "--json", help="Print one JSON document to stdout, nothing else.")
+from skisnow.cli._render import JsonOption, console, emit_json, print_table
 
 
 @app.command()
@@ -15,7 +13,7 @@ def captions(
     ski: str = typer.Option(
         "all", "--ski", help="Which shipped ski's captions: classic, skate or all."
     ),
-    json_out: bool = _JSON,
+    json_out: JsonOption = False,
 ) -> None:
     """Kalliorinne et al. (2023) Figs. 4-7 captions against the shipped skis (fitted numbers).
 

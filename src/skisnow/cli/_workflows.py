@@ -15,6 +15,7 @@ from skisnow._errors import InputError
 from skisnow._values import parse_values
 from skisnow.cli._app import EXIT_INPUT, app, report_converged, run_annotations
 from skisnow.cli._render import (
+    JsonOption,
     _jsonable,
     console,
     emit_json,
@@ -23,7 +24,6 @@ from skisnow.cli._render import (
     progress_bar,
 )
 
-_JSON = typer.Option(False, "--json", help="Print one JSON document to stdout, nothing else.")
 _SNOW = typer.Option(..., "--snow-modulus-mpa", help="Young's modulus of the snow in MPa.")
 _BODY = typer.Option(..., "--body-mass-kg", help="The athlete's body mass in kg.")
 _POS = typer.Option(
@@ -116,7 +116,7 @@ def compare(
     ] = "20,30,50,75,100,150,200,300,400",
     points: int = _POINTS,
     out: Path | None = _OUT,
-    json_out: bool = _JSON,
+    json_out: JsonOption = False,
 ) -> None:
     """Compare a fleet side by side at ½ and 1 body weight; rank it on one snow and across snow.
 
@@ -252,7 +252,7 @@ def pairs(
     load_position_mm: float = _POS,
     points: int = _POINTS,
     out: Path | None = _OUT,
-    json_out: bool = _JSON,
+    json_out: JsonOption = False,
 ) -> None:
     """Pair a fleet: the minimum-weight matching of the camber, stiffness and contact distance."""
     from skisnow.workflows import (
@@ -434,7 +434,7 @@ def cycle(
     show_template: Annotated[
         bool, typer.Option("--show-template", help="Print the template's knots and source.")
     ] = False,
-    json_out: bool = _JSON,
+    json_out: JsonOption = False,
 ) -> None:
     """The contact over a load cycle, frame by frame (warm-started): zones, pressures, and when
     and for how long the grip wax touches the snow."""
