@@ -15,6 +15,7 @@ from skisnow.cli import (  # noqa: F401  (registers)
     _ski,
     _sweep,
     _workflows,
+    _workflows_cycle,
 )
 from skisnow.cli._app import app, main
 

@@ -1,0 +1,247 @@
+"""The ``skisnow cycle`` command: the contact over a load cycle, frame by frame.
+
+Thin, as the other workflow commands (:mod:`skisnow.cli._workflows`, whose options and CSV writer
+it shares): it parses a load history (a CSV file or a built-in stride template), calls
+:func:`skisnow.workflows.run_cycle` (the contact of Kalliorinne et al. 2023, eq. 2–3, at every
+frame, warm-started) and renders the per-frame table, the kick-zone contact summary, CSV files and
+figures. Field units in every option and column (kg, mm, MPa, kPa, s, N).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Annotated, Any
+
+import numpy as np
+import typer
+
+from skisnow._atomic import atomic_path
+from skisnow._errors import InputError
+from skisnow.cli._app import app, report_converged, run_annotations
+from skisnow.cli._render import JsonOption, console, emit_json, print_table, progress_bar
+from skisnow.cli._workflows import _MODEL, _OUT, _POINTS, _SNOW, _check_positive, write_csv
+
+
+def cycle_records(ds: Any) -> list[dict[str, Any]]:
+    """One record per frame, field units (s, N, mm, kPa)."""
+    recs = []
+    for i, t in enumerate(ds["time"].values):
+        rec: dict[str, Any] = {
+            "t_s": float(t),
+            "force_n": float(ds["load"].values[i]),
+            "load_position_mm": float(ds["load_position"].values[i] * 1e3),
+            "loaded": bool(ds["loaded"].values[i]),
+        }
+        for j, zone in enumerate(ds["zone"].values):
+            rec[f"{zone}_length_mm"] = float(ds["length"].values[i, j] * 1e3)
+            rec[f"{zone}_area_cm2"] = float(ds["area"].values[i, j] * 1e4)
+            rec[f"{zone}_mean_pressure_kpa"] = float(ds["mean_pressure"].values[i, j] * 1e-3)
+            rec[f"{zone}_peak_pressure_kpa"] = float(ds["max_pressure"].values[i, j] * 1e-3)
+            rec[f"{zone}_load_share"] = float(ds["load_share"].values[i, j])
+        rec["kick_contact"] = bool(ds["kick_contact"].values[i])
+        rec["converged"] = bool(ds["converged"].values[i])
+        recs.append(rec)
+    return recs
+
+
+def summary_record(ds: Any) -> dict[str, Any]:
+    """The kick-zone contact summary of a cycle in field units."""
+    from skisnow.workflows import kick_contact_summary
+
+    s = kick_contact_summary(ds)
+    return {
+        "history": ds.attrs["history"],
+        "route": ds.attrs["route"],
+        "kick_contact_time_s": s["contact_time"],
+        "loaded_time_s": s["loaded_time"],
+        "kick_fraction_of_loaded": s["fraction_of_loaded"],
+        "first_touch_s": s["first_touch"],
+        "last_touch_s": s["last_touch"],
+        "touch_downs": s["episodes"],
+        "max_kick_share": s["max_kick_share"],
+        "max_kick_length_mm": s["max_kick_length"] * 1e3,
+        "peak_force_n": float(np.max(ds["load"].values)),
+        "peak_pressure_kpa": float(np.nanmax(ds["max_pressure"].values, initial=0.0) * 1e-3),
+    }
+
+
+@app.command()
+def cycle(
+    ski: Annotated[str, typer.Argument(help="A shipped ski name, a ski file or a bench file.")],
+    snow_modulus_mpa: float = _SNOW,
+    load_history: Annotated[
+        Path | None,
+        typer.Option(
+            "--load-history",
+            help="CSV with columns t_s, force_n or mass_kg, load_position_mm.",
+        ),
+    ] = None,
+    template: Annotated[
+        str | None,
+        typer.Option(
+            "--template",
+            help="Built-in cycle: diagonal, double_poling, skate_g3, or all (the stride table).",
+        ),
+    ] = None,
+    body_mass_kg: Annotated[
+        float | None, typer.Option("--body-mass-kg", help="Body mass in kg (with --template).")
+    ] = None,
+    cycle_s: Annotated[
+        float | None, typer.Option("--cycle-s", help="Cycle time in s (template's default).")
+    ] = None,
+    frames: Annotated[
+        int | None,
+        typer.Option("--frames", help="Frames over the cycle (template: 100; file: its rows)."),
+    ] = None,
+    profile_source: Annotated[
+        str,
+        typer.Option(
+            "--profile-source",
+            help="auto (network inside its trained domain, else beam), network or beam.",
+        ),
+    ] = "auto",
+    ski_model: str = _MODEL,
+    points: int = _POINTS,
+    out: Path | None = _OUT,
+    animation: Annotated[
+        Path | None,
+        typer.Option("--animation", help="Write an animation (.gif, or .mp4 with ffmpeg)."),
+    ] = None,
+    show_template: Annotated[
+        bool, typer.Option("--show-template", help="Print the template's knots and source.")
+    ] = False,
+    json_out: JsonOption = False,
+) -> None:
+    """The contact over a load cycle, frame by frame (warm-started): zones, pressures, and when
+    and for how long the grip wax touches the snow."""
+    from skisnow.workflows import TEMPLATES, read_load_history, run_cycle, template_history
+
+    if (load_history is None) == (template is None):
+        raise InputError("give exactly one of --load-history FILE or --template NAME")
+    _check_positive("--snow-modulus-mpa", snow_modulus_mpa)
+    if ski_model not in ("rigid", "flexible"):
+        raise InputError(f"--ski-model must be rigid or flexible, got {ski_model!r}")
+    if frames is not None and frames < 2:
+        raise InputError(f"--frames must be at least 2, got {frames}")
+    histories = []
+    if template is not None:
+        names = list(TEMPLATES) if template == "all" else [template]
+        if template != "all" and template not in TEMPLATES:
+            raise InputError(
+                f"--template must be one of {', '.join(TEMPLATES)} or all, got {template!r}"
+            )
+        if body_mass_kg is None:
+            raise InputError("--template needs --body-mass-kg")
+        if show_template:
+            for name in names:
+                tpl = TEMPLATES[name]
+                print_table(
+                    f"{tpl.technique}: {tpl.duration:g} s — {tpl.citation}",
+                    ["phase", "force [BW]", "load_position_mm"],
+                    [[k["phase"], k["force_bw"], k["load_position_mm"]] for k in tpl.knots()],
+                )
+        for name in names:
+            histories.append(
+                (
+                    name,
+                    template_history(
+                        name, body_mass=body_mass_kg, n_frames=frames or 100, duration=cycle_s
+                    ),
+                )
+            )
+    else:
+        assert load_history is not None
+        h = read_load_history(load_history)
+        histories.append((load_history.stem, h.resample(frames) if frames else h))
+    results = []
+    for name, history in histories:
+        with progress_bar(f"cycle {name}", disable=json_out) as update:
+            ds = run_cycle(
+                ski,
+                history,
+                snow_modulus=snow_modulus_mpa * 1e6,
+                profile_source=profile_source,  # type: ignore[arg-type]
+                n_points=points,
+                keep_fields=animation is not None,
+                ski_model=ski_model,  # type: ignore[arg-type]
+                progress=update,
+            )
+        report_converged(bool(ds["converged"].all()))
+        results.append((name, ds))
+    files: list[str] = []
+    for name, ds in results:
+        suffix = f"_{name}" if len(results) > 1 else ""
+        if out is not None:
+            from skisnow.plot import plot_cycle, save_figure
+
+            files.append(str(write_csv(out / f"cycle{suffix}.csv", cycle_records(ds))))
+            with atomic_path(out / f"cycle{suffix}.nc") as tmp:
+                ds.to_netcdf(tmp)  # the whole Dataset (SI units in the attributes)
+            files.append(str(out / f"cycle{suffix}.nc"))
+            files += [str(p) for p in save_figure(plot_cycle(ds), out / f"cycle{suffix}")]
+        if animation is not None:
+            from skisnow.plot import animate_cycle
+
+            target = animation.with_name(f"{animation.stem}{suffix}{animation.suffix}")
+            with (
+                progress_bar(f"animation {name}", disable=json_out) as update,
+                atomic_path(target) as tmp,
+            ):
+                animate_cycle(ds, tmp, progress=update)
+            files.append(str(target))
+    summaries = [{"cycle": name, **summary_record(ds)} for name, ds in results]
+    notes = [ds.attrs["route_note"] for _, ds in results if ds.attrs["route_note"]]
+    if out is not None:
+        files.append(str(write_csv(out / "cycle_summary.csv", summaries)))
+    if json_out:
+        emit_json(
+            {
+                **run_annotations(),
+                "ski": results[0][1].attrs["ski"],
+                "snow_modulus_mpa": snow_modulus_mpa,
+                "summaries": summaries,
+                "notes": notes,
+                "sources": {name: ds.attrs["history_source"] for name, ds in results},
+                "frames": {name: cycle_records(ds) for name, ds in results},
+                "files": files,
+            }
+        )
+        return
+    for note in notes:
+        console.print(f"[bold yellow]note[/]: {note}")
+    print_table(
+        f"Kick-zone contact over the cycle: {results[0][1].attrs['ski']} on "
+        f"{snow_modulus_mpa:g} MPa snow",
+        [
+            "cycle",
+            "route",
+            "wax touches [s]",
+            "loaded [s]",
+            "fraction",
+            "first [s]",
+            "last [s]",
+            "touch-downs",
+            "max kick share",
+            "peak force [N]",
+        ],
+        [
+            [
+                s["cycle"],
+                s["route"],
+                s["kick_contact_time_s"],
+                s["loaded_time_s"],
+                s["kick_fraction_of_loaded"],
+                s["first_touch_s"],
+                s["last_touch_s"],
+                s["touch_downs"],
+                s["max_kick_share"],
+                s["peak_force_n"],
+            ]
+            for s in summaries
+        ],
+    )
+    for name, ds in results:
+        if ds.attrs["history_source"] and template is not None:
+            console.print(f"{name}: {ds.attrs['history_source']}")
+    for f in files:
+        console.print(f"wrote {f}")
