@@ -11,7 +11,10 @@ import typer
 from skisnow.cli._app import app
 from skisnow.cli._render import (
     JsonOption,
+    LoadPositionGridOption,
+    MassGridOption,
     ProfileSourceOption,
+    SnowModulusGridOption,
     emit_json,
     err_console,
     progress_bar,
@@ -24,15 +27,9 @@ def explore(
     out: Annotated[Path, typer.Option("--out", help="The HTML page to write.")] = Path(
         "explore.html"
     ),
-    mass_kg: Annotated[
-        str, typer.Option("--mass-kg", help="Masses (kg): start:stop:step, a value or a list.")
-    ] = "5:130:5",
-    load_position_mm: Annotated[
-        str, typer.Option("--load-position-mm", help="Load positions x_m (mm), + toward tip.")
-    ] = "-240:-40:40",
-    snow_modulus_mpa: Annotated[
-        str, typer.Option("--snow-modulus-mpa", help="Snow moduli E_counter (MPa).")
-    ] = "40:400:40",
+    mass_kg: MassGridOption = "5:130:5",
+    load_position_mm: LoadPositionGridOption = "-240:-40:40",
+    snow_modulus_mpa: SnowModulusGridOption = "40:400:40",
     stations: Annotated[
         int, typer.Option("--stations", help="Display stations along the ski (divides 4096).")
     ] = 512,

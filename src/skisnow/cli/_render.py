@@ -24,6 +24,18 @@ ProfileSourceOption = Annotated[
         "(network for a shipped ski, beam for a ski file).",
     ),
 ]
+#: The grids of the sweep, its report's maps and the explorer: ``start:stop:step``, a value or a
+#: list (parsed by :func:`skisnow.sweep.parse_values`); each command keeps its own default.
+MassGridOption = Annotated[
+    str, typer.Option("--mass-kg", help="Masses (kg): start:stop:step, a value or a list.")
+]
+LoadPositionGridOption = Annotated[
+    str, typer.Option("--load-position-mm", help="Load positions x_m (mm), + toward tip.")
+]
+SnowModulusGridOption = Annotated[
+    str, typer.Option("--snow-modulus-mpa", help="Snow moduli E_counter (MPa).")
+]
+NPointsOption = Annotated[int, typer.Option("--n-points", help="Grid points along the ski.")]
 SkiModelOption = Annotated[
     str,
     typer.Option(

@@ -11,8 +11,12 @@ from skisnow._errors import InputError
 from skisnow.cli._app import app
 from skisnow.cli._render import (
     JsonOption,
+    LoadPositionGridOption,
+    MassGridOption,
+    NPointsOption,
     ProfileSourceOption,
     SkiModelOption,
+    SnowModulusGridOption,
     emit_json,
     err_console,
     print_table,
@@ -27,15 +31,9 @@ def sweep(
         list[str], typer.Option("--ski", help="Ski name or ski file .json (repeat for several).")
     ],
     out: Annotated[Path, typer.Option("--out", help="Zarr store (resumed if it exists).")],
-    mass_kg: Annotated[
-        str, typer.Option("--mass-kg", help="Masses (kg): start:stop:step, a value or a list.")
-    ] = "5:130:1",
-    load_position_mm: Annotated[
-        str, typer.Option("--load-position-mm", help="Load positions x_m (mm), + toward tip.")
-    ] = "-120",
-    snow_modulus_mpa: Annotated[
-        str, typer.Option("--snow-modulus-mpa", help="Snow moduli E_counter (MPa).")
-    ] = "20:400:20",
+    mass_kg: MassGridOption = "5:130:1",
+    load_position_mm: LoadPositionGridOption = "-120",
+    snow_modulus_mpa: SnowModulusGridOption = "20:400:20",
     scheduler: Annotated[
         str | None,
         typer.Option(
@@ -55,7 +53,7 @@ def sweep(
     ),
     profile_source: ProfileSourceOption = "auto",
     ski_model: SkiModelOption = "rigid",
-    n_points: Annotated[int, typer.Option("--n-points", help="Grid points along the ski.")] = 4096,
+    n_points: NPointsOption = 4096,
     netcdf: Annotated[
         Path | None, typer.Option("--netcdf", help="Also export the finished sweep to NetCDF.")
     ] = None,
@@ -202,13 +200,9 @@ def report(
         str | None,
         typer.Option("--scheduler", envvar="SKISNOW_SCHEDULER", help="Existing Dask scheduler."),
     ] = None,
-    mass_kg: Annotated[
-        str, typer.Option("--mass-kg", help="Masses of the maps (kg): start:stop:step or list.")
-    ] = "5:130:5",
-    snow_modulus_mpa: Annotated[
-        str, typer.Option("--snow-modulus-mpa", help="Snow moduli of the maps (MPa).")
-    ] = "20:400:40",
-    n_points: Annotated[int, typer.Option("--n-points", help="Grid points along the ski.")] = 4096,
+    mass_kg: MassGridOption = "5:130:5",
+    snow_modulus_mpa: SnowModulusGridOption = "20:400:40",
+    n_points: NPointsOption = 4096,
     stride: Annotated[
         str,
         typer.Option(
