@@ -37,6 +37,14 @@ __all__ = [
 ]
 
 
+def _semi_elliptic(r: ArrayLike, a: float, p0: float) -> np.ndarray:
+    """The Hertz distribution p₀ √(1 − r²/a²) [Pa], 0 outside |r| < a: the same form in line
+    contact (r = x, a the half-width; :func:`hertz_line`) and point contact (a the contact
+    radius; :func:`hertz_sphere`)."""
+    s = 1.0 - (np.asarray(r, dtype=float) / a) ** 2
+    return p0 * np.sqrt(np.clip(s, 0.0, None))
+
+
 @dataclass(frozen=True, kw_only=True)
 class HertzLine:
     """Hertz line contact: half-width a [m], peak p₀ [Pa], load per length W' [N/m]."""
@@ -49,8 +57,7 @@ class HertzLine:
 
     def pressure(self, x: ArrayLike) -> np.ndarray:
         """p(x) = p₀ √(1 − x²/a²) [Pa] (0 outside |x| < a)."""
-        s = 1.0 - (np.asarray(x, dtype=float) / self.half_width) ** 2
-        return self.max_pressure * np.sqrt(np.clip(s, 0.0, None))
+        return _semi_elliptic(x, self.half_width, self.max_pressure)
 
 
 def hertz_line(load_per_length: float, radius: float, *, modulus: float) -> HertzLine:
@@ -86,8 +93,7 @@ class HertzSphere:
 
     def pressure(self, r: ArrayLike) -> np.ndarray:
         """p(r) = p₀ √(1 − r²/a²) [Pa] (0 outside r < a)."""
-        s = 1.0 - (np.asarray(r, dtype=float) / self.contact_radius) ** 2
-        return self.max_pressure * np.sqrt(np.clip(s, 0.0, None))
+        return _semi_elliptic(r, self.contact_radius, self.max_pressure)
 
 
 def hertz_sphere(load: float, radius: float, *, modulus: float) -> HertzSphere:
