@@ -126,51 +126,38 @@ def grind(
 
 _UM = 1e-6
 
+
+def _preset(name: str, description: str, *passes: GroovePass) -> GrindSpec:
+    """A preset: its groove passes over the stone grit all five share (0.6 µm rms, 6 µm)."""
+    return GrindSpec(name, description, passes, grit_rms=0.6 * _UM, grit_length=6 * _UM)
+
+
 #: The five structures of Scherge et al. (2021) (stand-ins; see the module docstring).
 PRESETS: dict[str, GrindSpec] = {
-    "S1": GrindSpec(
-        "S1",
-        "linear/fine",
-        (GroovePass(pitch=80 * _UM, depth=8.5 * _UM, depth_jitter=0.5),),
-        grit_rms=0.6 * _UM,
-        grit_length=6 * _UM,
-    ),
-    "S2": GrindSpec(
-        "S2",
-        "linear/medium",
-        (GroovePass(pitch=130 * _UM, depth=8.5 * _UM, depth_jitter=0.45),),
-        grit_rms=0.6 * _UM,
-        grit_length=6 * _UM,
-    ),
-    "S3": GrindSpec(
-        "S3",
-        "linear/coarse",
-        (GroovePass(pitch=220 * _UM, depth=10.5 * _UM, depth_jitter=0.35),),
-        grit_rms=0.6 * _UM,
-        grit_length=6 * _UM,
-    ),
-    "S4": GrindSpec(
-        "S4",
-        "linear/multiple",
-        (
+    spec.name: spec
+    for spec in (
+        _preset("S1", "linear/fine", GroovePass(pitch=80 * _UM, depth=8.5 * _UM, depth_jitter=0.5)),
+        _preset(
+            "S2", "linear/medium", GroovePass(pitch=130 * _UM, depth=8.5 * _UM, depth_jitter=0.45)
+        ),
+        _preset(
+            "S3", "linear/coarse", GroovePass(pitch=220 * _UM, depth=10.5 * _UM, depth_jitter=0.35)
+        ),
+        _preset(
+            "S4",
+            "linear/multiple",
             GroovePass(pitch=200 * _UM, depth=10.0 * _UM, depth_jitter=0.3),
             GroovePass(
                 pitch=90 * _UM, depth=6.0 * _UM, width=0.8, offset=37 * _UM, depth_jitter=0.3
             ),
         ),
-        grit_rms=0.6 * _UM,
-        grit_length=6 * _UM,
-    ),
-    "S5": GrindSpec(
-        "S5",
-        "cross-hatched",
-        (
+        _preset(
+            "S5",
+            "cross-hatched",
             GroovePass(pitch=120 * _UM, depth=11.5 * _UM, angle_deg=15.0, depth_jitter=0.35),
             GroovePass(pitch=120 * _UM, depth=11.5 * _UM, angle_deg=-15.0, depth_jitter=0.35),
         ),
-        grit_rms=0.6 * _UM,
-        grit_length=6 * _UM,
-    ),
+    )
 }
 
 
