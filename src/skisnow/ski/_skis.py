@@ -163,22 +163,17 @@ class Ski:
                 )
         if min(self.stiffness_values) <= 0:
             raise InputError(f"Ski {self.name!r}: stiffness values EI must be > 0 N m²")
-        if self.kick_zone is not None:
-            a, b = (float(v) for v in self.kick_zone)
+        for what in ("kick_zone", "boot_plate"):
+            span = getattr(self, what)
+            if span is None:
+                continue
+            a, b = (float(v) for v in span)
             if not (self.x_tail <= a < b <= self.x_tip):
                 raise InputError(
-                    f"Ski {self.name!r}: kick_zone must satisfy x_tail <= start < end <= x_tip, "
-                    f"got {self.kick_zone}"
+                    f"Ski {self.name!r}: {what} must satisfy x_tail <= start < end <= x_tip, "
+                    f"got {span}"
                 )
-            object.__setattr__(self, "kick_zone", (a, b))
-        if self.boot_plate is not None:
-            a, b = (float(v) for v in self.boot_plate)
-            if not (self.x_tail <= a < b <= self.x_tip):
-                raise InputError(
-                    f"Ski {self.name!r}: boot_plate must satisfy x_tail <= start < end <= x_tip, "
-                    f"got {self.boot_plate}"
-                )
-            object.__setattr__(self, "boot_plate", (a, b))
+            object.__setattr__(self, what, (a, b))
         if (self.width_x is None) != (self.width_values is None):
             raise InputError(f"Ski {self.name!r}: give both width_x and width_values, or neither")
         if self.width_x is not None and self.width_values is not None:
