@@ -23,7 +23,6 @@ from hypothesis.extra.numpy import arrays
 from skisnow.constants import STANDARD_GRAVITY
 from skisnow.explore import (
     ExplorerGrid,
-    block_mean,
     explorer_dataset,
     pack,
     quantise_curves,
@@ -31,6 +30,7 @@ from skisnow.explore import (
     unpack,
 )
 from skisnow.explore._pack import QMAX
+from skisnow.sweep import block_mean
 
 GRID = ExplorerGrid(
     masses=(30.0, 60.0, 90.0),
@@ -95,7 +95,7 @@ def test_display_pressure_carries_the_load(dataset) -> None:
         np.testing.assert_allclose(force, np.broadcast_to(expected, force.shape), rtol=1e-6)
         # in contact the ski base lies on the snow surface (b = −u where p > 0); nowhere does
         # it sink below it — to the quantisation, on the display grid
-        b, s = dataset["bottom_um"].values[0, k], dataset["snow_um"].values[0, k]
+        b, s = dataset["base_um"].values[0, k], dataset["snow_um"].values[0, k]
         code = dataset["zone_code"].values[0, k] > 0
         # blocks inside a patch (a block at a patch end also holds cells out of contact)
         inside = code & np.roll(code, 1, axis=-1) & np.roll(code, -1, axis=-1)
@@ -210,7 +210,7 @@ def test_cli_writes_a_page_and_refuses_bad_options(tmp_path: Path, capsys) -> No
     from skisnow.cli import main
 
     out = tmp_path / "e.html"
-    args = ["explore", "skate", "--mass-kg", "30,60", "--load-position-mm", "-120",
+    args = ["explore", "skate", "--mass-kg", "30,60", "--load-position-mm", "-120", "--workers", "0",
             "--snow-modulus-mpa", "100", "--out", str(out), "--json"]  # fmt: skip
     assert main(args) == 0
     doc = json.loads(capsys.readouterr().out)

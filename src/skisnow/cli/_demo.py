@@ -160,7 +160,7 @@ def run_contact_demo(
     with progress_bar("explorer", disable=not progress, transient=False) as bar:
         page, _ = write_explorer(spec.skis, out / "explore.html", explorer_grid,
                                  profile_source=profile_source, ski_models=(ski_model,),
-                                 progress=bar)  # fmt: skip
+                                 workers=workers, progress=bar)  # fmt: skip
     files.append(str(page))
     for ski in spec.skis:
         study = study_ski(ski, dataset=ds, profile_source=profile_source, n_points=n_points,

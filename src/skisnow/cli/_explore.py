@@ -42,6 +42,22 @@ def explore(
             "(a switch on the page).",
         ),
     ] = "rigid",
+    workers: Annotated[
+        int | None,
+        typer.Option("--workers", help="Local Dask workers (default: one per core; 0: no Dask)."),
+    ] = None,
+    scheduler: Annotated[
+        str | None,
+        typer.Option("--scheduler", envvar="SKISNOW_SCHEDULER", help="Existing Dask scheduler."),
+    ] = None,
+    store: Annotated[
+        Path | None,
+        typer.Option(
+            "--store",
+            help="Keep the sweep's Zarr stores in this directory (an interrupted build resumes; "
+            "default: a temporary directory).",
+        ),
+    ] = None,
     json_out: JsonOption = False,
 ) -> None:
     """Write an interactive explorer page: sliders for mass, load position and snow modulus.
@@ -71,6 +87,9 @@ def explore(
             grid,
             profile_source=source,
             ski_models=("rigid", "flexible") if ski_model == "both" else (ski_model,),
+            store=store,
+            workers=workers,
+            scheduler=scheduler,
             progress=bar,
         )
     seconds = time.perf_counter() - start

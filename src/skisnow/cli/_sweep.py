@@ -296,7 +296,8 @@ def report(
         explorer_name = f"{stem}_explore.html"
         with progress_bar("explorer", disable=json_out) as bar:
             write_explorer([ski], out / explorer_name, profile_source=source,
-                           ski_models=(ski_model,), progress=bar)  # fmt: skip
+                           ski_models=(ski_model,), workers=workers, scheduler=scheduler,
+                           progress=bar)  # fmt: skip
     path = write_report(study, out, cycles=cycles, fleet=fleet, explorer=explorer_name)
     if json_out:
         emit_json({"report": str(path), "explorer": explorer_name and str(out / explorer_name)})

@@ -8,19 +8,17 @@ base and the deformed snow, the pressure with the zones shaded, the zone table a
 8/9-style maps with the current point marked. No server, no network, no CDN.
 """
 
-from skisnow.explore._data import ZONES, ExplorerGrid, block_mean, explorer_dataset, zone_codes
+from skisnow.explore._data import ZONES, ExplorerGrid, explorer_dataset
 from skisnow.explore._pack import pack, quantise_curves, unpack
 from skisnow.explore._page import render_explorer, write_explorer
 
 __all__ = [
     "ZONES",
     "ExplorerGrid",
-    "block_mean",
     "explorer_dataset",
     "pack",
     "quantise_curves",
     "render_explorer",
     "unpack",
     "write_explorer",
-    "zone_codes",
 ]

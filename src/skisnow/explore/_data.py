@@ -1,18 +1,20 @@
 """The explorer's data: zone metrics AND fields along the ski over a grid of load and snow.
 
-Each grid point is one contact case of the chain in Kalliorinne et al. (2023): loaded camber
-profile h(x) = f(x, m, x_m) (§3.1), the rigid profile pressed into the elastic half-space with
-force and moment balance (eq. 2–3), zones (§4). Beside the zone metrics the page needs the fields:
-pressure p(x), the ski base b(x) = h(x) − δ − θ(x − x_m) and the snow surface −u(x), on a display
-grid of ``n_display`` stations: block means of the ``n_points`` solver cells (a block mean of the
-pressure keeps the force balance; peak pressures are in the metrics).
+They come from a sweep (:func:`skisnow.sweep.run_sweep`, Dask workers, a resumable Zarr store)
+that also stores the fields on display stations (``SweepSpec.field_stations``). Each grid point
+is one case of the chain of Kalliorinne et al. (2023) through :func:`skisnow.pipeline.solve_case`:
+loaded camber profile h(x) = f(x, m, x_m) (§3.1), pressed into the elastic half-space with force
+and moment balance (eq. 2–3), zones (§4) — or, for the flexible ski, the beam and the half-space
+solved together. Fields: pressure p(x), the ski base b(x) = h(x) − δ − θ(x − x_m) and the snow
+surface −u(x), as block means of the solver's cells (:func:`skisnow.sweep.station_fields`).
 """
 
 from __future__ import annotations
 
-import itertools
+import tempfile
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from pathlib import Path
 
 import numpy as np
 
@@ -21,22 +23,10 @@ from skisnow._errors import InputError
 #: Zones of :class:`skisnow.contact.ZoneMetrics` on the page; ``kick`` is the contact between the
 #: kick-zone marks, whatever patch it belongs to (where the grip wax touches the snow).
 ZONES = ("rear", "middle", "front", "total", "kick")
+#: What the page needs of a sweep, in the page's order of dims.
+POINT = ("ski", "model", "mass_kg", "load_position_mm", "snow_modulus_mpa")
+FIELDS = ("pressure_kpa", "base_um", "snow_um", "zone_code")
 METRICS = ("length_mm", "area_cm2", "mean_pressure_kpa", "max_pressure_kpa", "load_share")
-#: Field units: SI value × factor.
-_TO_FIELD = {
-    "length_mm": 1e3,
-    "area_cm2": 1e4,
-    "mean_pressure_kpa": 1e-3,
-    "max_pressure_kpa": 1e-3,
-    "load_share": 1.0,
-}
-_ZONE_ATTR = {
-    "length_mm": "length",
-    "area_cm2": "area",
-    "mean_pressure_kpa": "mean_pressure",
-    "max_pressure_kpa": "max_pressure",
-    "load_share": "load_share",
-}
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -68,128 +58,73 @@ class ExplorerGrid:
             )
 
 
-def block_mean(values: np.ndarray, n_blocks: int) -> np.ndarray:
-    """Means of ``n_blocks`` equal consecutive blocks along the last axis."""
-    v = np.asarray(values, dtype=float)
-    return v.reshape(*v.shape[:-1], n_blocks, v.shape[-1] // n_blocks).mean(axis=-1)
-
-
-def zone_codes(x: np.ndarray, zones, n_blocks: int) -> np.ndarray:
-    """Zone of each display station: 0 none, 1 rear, 2 middle, 3 front (the zone of the contact
-    cells in the block; the most forward zone where a block holds two)."""
-    code = np.zeros(x.size, dtype=np.uint8)
-    for k, name in enumerate(ZONES[:3], start=1):
-        for a, b in zones[name].intervals:
-            code[(x >= a) & (x <= b)] = k
-    return code.reshape(n_blocks, -1).max(axis=-1)
-
-
 def explorer_dataset(
     skis: Sequence[str],
     grid: ExplorerGrid | None = None,
     *,
     profile_source: str = "network",
     ski_models: Sequence[str] = ("rigid",),
+    store: str | Path | None = None,
+    workers: int | None = 0,
+    scheduler: str | None = None,
     progress: Callable[[int, int], None] | None = None,
 ):
-    """Solve every point of ``grid`` for each ski: an :class:`xarray.Dataset` with dims
-    ``ski, model, mass_kg, load_position_mm, snow_modulus_mpa, zone, station``.
+    """Sweep ``grid`` for each ski and ski model, fields included: an :class:`xarray.Dataset`
+    with dims ``ski, model, mass_kg, load_position_mm, snow_modulus_mpa, zone, station``.
 
-    Variables: ``x_mm`` (ski, station); ``pressure_kpa``, ``bottom_um``, ``snow_um`` and
+    Variables: ``x_mm`` (ski, station); ``pressure_kpa``, ``base_um``, ``snow_um`` and
     ``zone_code`` per point and station; the zone metrics of :data:`METRICS` and ``patches`` per
-    point and zone; ``converged`` per point. A point whose load the profile cannot carry is NaN
-    (fields) with ``converged = False``. ``progress(done, total)`` is called after each chunk of
-    masses. Along the masses each solve starts from the previous pressure (warm start).
+    point and zone (:data:`ZONES`); ``converged`` per point. A point whose load the ski cannot
+    carry is NaN with ``converged = False``.
 
     ``ski_models``: ``'rigid'`` (the paper's method: the loaded profile from ``profile_source``
     pressed into the snow as a rigid body) and/or ``'flexible'`` (the beam and the half-space
-    solved together, :func:`skisnow.contact.solve_flexible`); the ski base shown is the rigid
-    profile, or the bent ski, lowered by δ + θ(x − x_m).
+    solved together). ``store``: a directory holding one resumable Zarr store per ski model
+    (``explore_rigid.zarr``, ...; default: a temporary one); ``workers``/``scheduler`` as in
+    :func:`skisnow.sweep.run_sweep` (``0``: in this process). ``progress(done, total)`` is
+    called after each chunk (one ski, position and snow modulus, all masses, warm-started).
     """
     import xarray as xr
 
-    from skisnow._errors import UnsupportedLoadError
-    from skisnow.pipeline import loaded_profiles, resolve_ski, solve_case
+    from skisnow.sweep import SweepSpec, open_sweep, run_sweep
 
     grid = grid or ExplorerGrid()
-    names = tuple(skis)
-    if not names or len(set(names)) != len(names):
-        raise InputError(f"skis: need distinct skis, got {list(names)}")
-    resolved = [resolve_ski(s) for s in names]  # an unknown ski fails here, before any solve
     models = tuple(ski_models)
     if not models or len(set(models)) != len(models) or set(models) - {"rigid", "flexible"}:
         raise InputError(f"ski models: need distinct 'rigid' and/or 'flexible', got {models}")
-    n_s, n_m, n_p, n_e = (
-        len(names),
-        len(grid.masses),
-        len(grid.load_positions),
-        len(grid.snow_moduli),
-    )
-    nd = grid.n_display
-    shape = (n_s, len(models), n_m, n_p, n_e)
-    fields = {k: np.full((*shape, nd), np.nan) for k in ("pressure_kpa", "bottom_um", "snow_um")}
-    codes = np.zeros((*shape, nd), dtype=np.uint8)
-    metrics = {k: np.full((*shape, len(ZONES)), np.nan) for k in METRICS}
-    patches = np.zeros((*shape, len(ZONES)), dtype=np.int32)
-    converged = np.zeros(shape, dtype=bool)
-    x_mm = np.zeros((n_s, nd))
-    total, done = n_s * len(models) * n_p * n_e, 0
-    for s, ski in enumerate(resolved):
-        for p, xm in enumerate(grid.load_positions):
-            x, heights = loaded_profiles(
-                ski, grid.masses, xm, profile_source=profile_source, n_points=grid.n_points
-            )
-            x_mm[s] = block_mean(x, nd) * 1e3
-            for (j, ski_model), (e, modulus) in itertools.product(
-                enumerate(models), enumerate(grid.snow_moduli)
-            ):
-                previous = None
-                for a, mass in enumerate(grid.masses):
-                    try:
-                        case = solve_case(
-                            ski,
-                            mass=mass,
-                            load_position=xm,
-                            snow_modulus=modulus,
-                            profile=(x, heights[a]) if ski_model == "rigid" else None,
-                            ski_model=ski_model,
-                            start=previous,
-                            n_points=grid.n_points,
-                            workers=1,
-                        )
-                    except UnsupportedLoadError:
-                        previous = None
-                        continue
-                    i = (s, j, a, p, e)
-                    sol, zones = case.solution, case.zones
-                    base = sol.height - sol.translation - sol.rotation * (sol.x - xm)
-                    fields["pressure_kpa"][i] = block_mean(sol.pressure, nd) * 1e-3
-                    fields["bottom_um"][i] = block_mean(base, nd) * 1e6
-                    fields["snow_um"][i] = -block_mean(sol.displacement, nd) * 1e6
-                    codes[i] = zone_codes(sol.x, zones, nd)
-                    for q, z in enumerate(ZONES):
-                        zone = zones[z]
-                        for k in METRICS:
-                            metrics[k][(*i, q)] = getattr(zone, _ZONE_ATTR[k]) * _TO_FIELD[k]
-                        patches[(*i, q)] = zone.patches
-                    converged[i] = sol.converged
-                    previous = sol.pressure if sol.converged else None
-                done += 1
-                if progress is not None:
-                    progress(done, total)
-    point = ("ski", "model", "mass_kg", "load_position_mm", "snow_modulus_mpa")
-    data = {k: ((*point, "station"), v) for k, v in fields.items()}
-    data["zone_code"] = ((*point, "station"), codes)
-    data.update({k: ((*point, "zone"), v) for k, v in metrics.items()})
-    data["patches"] = ((*point, "zone"), patches)
-    data["converged"] = (point, converged)
-    data["x_mm"] = (("ski", "station"), x_mm)
-    coords = {
-        "ski": [getattr(k, "name", str(k)) for k in resolved],
-        "model": list(models),
-        "mass_kg": list(grid.masses),
-        "load_position_mm": [round(v * 1e3, 6) for v in grid.load_positions],
-        "snow_modulus_mpa": [round(v * 1e-6, 6) for v in grid.snow_moduli],
-        "zone": list(ZONES),
-    }
-    return xr.Dataset(data, coords=coords, attrs={"profile_source": profile_source})
+    specs = [
+        SweepSpec(
+            skis=tuple(skis),
+            masses=grid.masses,
+            load_positions=grid.load_positions,
+            snow_moduli=grid.snow_moduli,
+            profile_source=profile_source,
+            n_points=grid.n_points,
+            ski_model=model,
+            zones=ZONES,
+            field_stations=grid.n_display,
+        )
+        for model in models
+    ]  # every input is checked here, before any store is created
+    total = sum(len(spec.chunks()) for spec in specs)
+    done = 0
+
+    def on_chunk(*_: object) -> None:
+        nonlocal done
+        done += 1
+        if progress is not None:
+            progress(done, total)
+
+    with tempfile.TemporaryDirectory(prefix="skisnow-explore-") as tmp:
+        root = Path(tmp if store is None else store)
+        parts = []
+        for model, spec in zip(models, specs, strict=True):
+            path = root / f"explore_{model}.zarr"
+            run_sweep(spec, path, workers=workers, scheduler=scheduler, on_progress=on_chunk)
+            ds = open_sweep(path)
+            parts.append(ds[[*FIELDS, *METRICS, "patches", "converged", "x_mm"]].load())
+    ds = xr.concat(parts, dim=xr.DataArray(list(models), dims="model", name="model"))
+    ds["x_mm"] = ds["x_mm"].isel(model=0, drop=True)
+    ds = ds.transpose(*POINT, "zone", "station", missing_dims="ignore")
+    ds.attrs = {"profile_source": profile_source, "ski_models": list(models)}
+    return ds

@@ -81,8 +81,8 @@ def pack(
         add(f"{name}_scale", scale.tobytes(), scale.shape, "float32", "raw")
     for name, values in arrays.items():
         a = np.ascontiguousarray(values)
-        if a.dtype == np.bool_:
-            a = a.astype(np.uint8)
+        if a.dtype == np.bool_ or (a.dtype.kind in "iu" and a.dtype.itemsize == 1):
+            a = a.astype(np.uint8)  # flags and small codes (0..255) as bytes
         elif a.dtype.kind == "f":
             a = a.astype(np.float32)
         elif a.dtype.kind in "iu" and a.dtype != np.uint8:

@@ -16,7 +16,7 @@ import numpy as np
 
 from skisnow.explore._pack import pack
 
-CURVES = ("pressure_kpa", "bottom_um", "snow_um")
+CURVES = ("pressure_kpa", "base_um", "snow_um")
 ARRAYS = (
     "zone_code",
     "length_mm",
@@ -87,6 +87,9 @@ def write_explorer(
     *,
     profile_source: str = "network",
     ski_models: Sequence[str] = ("rigid",),
+    store: str | Path | None = None,
+    workers: int | None = 0,
+    scheduler: str | None = None,
     progress: Callable[[int, int], None] | None = None,
 ) -> tuple[Path, Any]:
     """Solve the explorer's grid (:func:`skisnow.explore.explorer_dataset`) and write its page
@@ -95,9 +98,9 @@ def write_explorer(
     from skisnow._atomic import atomic_write
     from skisnow.explore._data import explorer_dataset
 
-    ds = explorer_dataset(
-        skis, grid, profile_source=profile_source, ski_models=ski_models, progress=progress
-    )
+    ds = explorer_dataset(skis, grid, profile_source=profile_source, ski_models=ski_models,
+                          store=store, workers=workers, scheduler=scheduler,
+                          progress=progress)  # fmt: skip
     ds.attrs["skisnow_version"] = __version__
     names = ", ".join(str(s) for s in ds["ski"].values)
     page = render_explorer(

@@ -117,7 +117,7 @@
 
   function drawProfile(p, xs, zone) {
     const { ctx, w, h } = setupCanvas("profile");
-    const bottom = curve("bottom_um", p), snow = curve("snow_um", p);
+    const bottom = curve("base_um", p), snow = curve("snow_um", p);
     const zoom = document.getElementById("zoom").checked;
     let lo = 0, hi = 0;
     for (let i = 0; i < xs.length; i++) { lo = Math.min(lo, snow[i], bottom[i]); hi = Math.max(hi, bottom[i]); }

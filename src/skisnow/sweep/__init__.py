@@ -12,6 +12,7 @@ snow_modulus_mpa, zone`` written chunk by chunk into a Zarr store (see :mod:`._s
 >>> ds = open_sweep("fig8.zarr")                                          # doctest: +SKIP
 """
 
+from skisnow.sweep._fields import block_mean, station_fields, zone_codes
 from skisnow.sweep._grid import (
     MODELS,
     PAPER_BASE_MODULUS,
@@ -29,7 +30,7 @@ from skisnow.sweep._run import (
     prepare_store,
     run_sweep,
 )
-from skisnow.sweep._store import VARIABLES, open_sweep, read_spec, save_netcdf
+from skisnow.sweep._store import FIELD_VARIABLES, VARIABLES, open_sweep, read_spec, save_netcdf
 
 
 def __getattr__(name: str):  # the physics chunk function imports the solvers only when asked
@@ -41,6 +42,7 @@ def __getattr__(name: str):  # the physics chunk function imports the solvers on
 
 
 __all__ = [
+    "FIELD_VARIABLES",
     "MODELS",
     "PAPER_BASE_MODULUS",
     "PAPER_POISSON",
@@ -51,6 +53,7 @@ __all__ = [
     "ProgressCallback",
     "SweepRun",
     "SweepSpec",
+    "block_mean",
     "contact_chunk",
     "default_workers",
     "open_sweep",
@@ -60,4 +63,6 @@ __all__ = [
     "run_sweep",
     "save_netcdf",
     "solve_point",
+    "station_fields",
+    "zone_codes",
 ]

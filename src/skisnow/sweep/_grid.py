@@ -61,6 +61,10 @@ class SweepSpec:
             of the chunk; ``False`` solves every point cold (for benchmarking the warm starts).
         ski_model: ``'rigid'`` (the paper's method: the loaded profile pressed into the snow)
             or ``'flexible'`` (the ski's beam bends on the snow; no profile, no network).
+        field_stations: ``0`` (default) stores the zone metrics only; ``n > 0`` also stores the
+            fields along the ski on ``n`` display stations (block means of the ``n_points``
+            cells, ``n`` dividing ``n_points``): pressure, ski base, snow surface, zone of each
+            station (what the explorer page shows, :mod:`skisnow.explore`).
     """
 
     skis: tuple[str, ...]
@@ -77,6 +81,7 @@ class SweepSpec:
     zones: tuple[str, ...] = field(default=ZONES)
     ski_files: tuple[tuple[str, str], ...] = ()
     ski_model: str = "rigid"
+    field_stations: int = 0
 
     def __post_init__(self) -> None:
         from skisnow.ski import SHIPPED_SKIS, get_ski, ski_to_json
@@ -129,6 +134,13 @@ class SweepSpec:
         object.__setattr__(self, "zones", tuple(self.zones))
         if self.ski_model not in ("rigid", "flexible"):
             raise InputError(f"ski_model: {self.ski_model!r} is not one of ('rigid', 'flexible')")
+        n = self.field_stations
+        if int(n) != n or n < 0 or (n and (n < 16 or self.n_points % int(n))):
+            raise InputError(
+                f"field_stations: need 0 or an integer >= 16 that divides n_points = "
+                f"{self.n_points}, got {n!r}"
+            )
+        object.__setattr__(self, "field_stations", int(n))
 
     # ----------------------------------------------------------------------------------------
     def ski(self, label: str) -> Any:  # a skisnow.ski.Ski (imported lazily)

@@ -116,6 +116,15 @@ def contact_chunk(
     out["iterations"] = np.zeros(n_m, dtype=np.int32)
     out["residual"] = np.full(n_m, np.nan)
     out["converged"] = np.zeros(n_m, dtype=bool)
+    n_f = spec.field_stations
+    if n_f:
+        from skisnow.pipeline import stations
+        from skisnow.sweep._fields import block_mean, station_fields
+
+        for name in ("pressure_kpa", "base_um", "snow_um"):
+            out[name] = np.full((n_m, n_f), np.nan)
+        out["zone_code"] = np.zeros((n_m, n_f), dtype=np.int8)
+        out["x_mm"] = block_mean(stations(spec.ski(ski_name), spec.n_points), n_f) * 1e3
     previous: np.ndarray | None = None
     ski = spec.ski(ski_name)  # once per chunk: a shipped ski's file check or a ski file's parse
     for a, mass in enumerate(spec.masses):
@@ -143,11 +152,15 @@ def contact_chunk(
             out["max_pressure_kpa"][a, q] = zone.max_pressure * _TO_FIELD["max_pressure"]
             out["load_share"][a, q] = zone.load_share
             out["patches"][a, q] = zone.patches
-            b = zones.breitschaedel[name]
-            out["breitschaedel_length_mm"][a, q] = b.length * _TO_FIELD["length"]
-            out["breitschaedel_area_cm2"][a, q] = b.area * _TO_FIELD["area"]
+            b = zones.breitschaedel.get(name)  # none for 'kick' (between the kick-zone marks)
+            if b is not None:
+                out["breitschaedel_length_mm"][a, q] = b.length * _TO_FIELD["length"]
+                out["breitschaedel_area_cm2"][a, q] = b.area * _TO_FIELD["area"]
         out["iterations"][a] = solution.iterations
         out["residual"][a] = solution.residual
         out["converged"][a] = solution.converged
+        if n_f:
+            for name, value in station_fields(solution, zones, n_f).items():
+                out[name][a] = value
         previous = solution.pressure if (solution.converged and spec.warm_start) else None
     return out

@@ -76,7 +76,48 @@ VARIABLES: dict[str, _Var] = {
 }
 
 
+FIELD_DIMS = (*POINT_DIMS, "station")
+
+#: The fields along the ski a sweep stores when ``spec.field_stations > 0`` (block means on the
+#: display stations; float32: a display needs no more).
+FIELD_VARIABLES: dict[str, _Var] = {
+    "pressure_kpa": _Var(FIELD_DIMS, "float32", "kPa", "contact pressure (station block mean)"),
+    "base_um": _Var(
+        FIELD_DIMS, "float32", "um", "ski base above the undeformed snow, h − δ − θ(x − x_m)"
+    ),
+    "snow_um": _Var(FIELD_DIMS, "float32", "um", "snow surface, −u (station block mean)"),
+    "zone_code": _Var(
+        FIELD_DIMS,
+        "int8",
+        "1",
+        "zone of the contact at the station: 0 none, 1 rear, 2 middle, 3 front",
+    ),
+    "x_mm": _Var(("ski", "station"), "float64", "mm", "display stations along the ski"),
+}
+
+
+def variables(spec: SweepSpec) -> dict[str, _Var]:
+    """The variables of a sweep's store: :data:`VARIABLES`, and :data:`FIELD_VARIABLES` when
+    the spec asks for fields."""
+    return VARIABLES | FIELD_VARIABLES if spec.field_stations else VARIABLES
+
+
+def chunk_shapes(spec: SweepSpec) -> dict[str, tuple[int, ...]]:
+    """Shape of each variable in one chunk's result (its dims less ski, position, modulus)."""
+    sizes = {"mass_kg": len(spec.masses), "zone": len(spec.zones), "station": spec.field_stations}
+    return {
+        name: tuple(sizes[d] for d in var.dims if d in sizes)
+        for name, var in variables(spec).items()
+    }
+
+
 def _coords(spec: SweepSpec) -> dict[str, Any]:
+    if spec.field_stations:
+        return _base_coords(spec) | {"station": np.arange(spec.field_stations)}
+    return _base_coords(spec)
+
+
+def _base_coords(spec: SweepSpec) -> dict[str, Any]:
     return {
         "ski": np.array(spec.skis, dtype=str),
         "mass_kg": np.array(spec.masses, dtype=float),
@@ -87,7 +128,7 @@ def _coords(spec: SweepSpec) -> dict[str, Any]:
 
 
 def _fill(dtype: str) -> Any:
-    return {"float64": np.nan, "int32": 0, "bool": False, "int8": 0}[dtype]
+    return {"float64": np.nan, "float32": np.nan, "int32": 0, "bool": False, "int8": 0}[dtype]
 
 
 def template(spec: SweepSpec, *, attrs: Mapping[str, Any]) -> xr.Dataset:
@@ -103,9 +144,10 @@ def template(spec: SweepSpec, *, attrs: Mapping[str, Any]) -> xr.Dataset:
         "load_position_mm": 1,
         "snow_modulus_mpa": 1,
         "zone": sizes["zone"],
+        "station": sizes.get("station", 0),
     }
     data_vars = {}
-    for name, var in VARIABLES.items():
+    for name, var in variables(spec).items():
         shape = tuple(sizes[d] for d in var.dims)
         chunks = tuple(task_chunk[d] for d in var.dims)
         arr = da.full(shape, _fill(var.dtype), dtype=var.dtype, chunks=chunks)
@@ -125,10 +167,10 @@ def template(spec: SweepSpec, *, attrs: Mapping[str, Any]) -> xr.Dataset:
     return ds
 
 
-def _encoding() -> dict[str, dict[str, Any]]:
+def _encoding(spec: SweepSpec) -> dict[str, dict[str, Any]]:
     enc: dict[str, dict[str, Any]] = {}
-    for name, var in VARIABLES.items():
-        if var.dtype != "float64":
+    for name, var in variables(spec).items():
+        if not var.dtype.startswith("float"):
             # No _FillValue: integers and booleans stay integers and booleans when read back.
             enc[name] = {"_FillValue": None}
     # The marker is one uncompressed byte per Zarr chunk: written whole or not at all.
@@ -209,7 +251,7 @@ def create_store(path: Path, spec: SweepSpec, *, attrs: Mapping[str, Any]) -> No
     tmp = temporary_sibling(path, tag=CREATING_TAG)
     ds = template(spec, attrs=attrs)
     ds.to_zarr(
-        tmp, mode="w-", compute=False, encoding=_encoding(), consolidated=False, zarr_format=2
+        tmp, mode="w-", compute=False, encoding=_encoding(spec), consolidated=False, zarr_format=2
     )
     os.rename(tmp, path)  # atomic; fails if something appeared at path meanwhile
     fsync_dir(path.parent)
@@ -226,10 +268,13 @@ def check_skeleton(path: Path, spec: SweepSpec) -> None:
         "load_position_mm": len(spec.load_positions),
         "snow_modulus_mpa": len(spec.snow_moduli),
         "zone": len(spec.zones),
+        "station": spec.field_stations,
     }
     group = zarr.open_group(str(path), mode="r")
-    want = {name: var.dims for name, var in VARIABLES.items()} | {"chunk_done": CHUNK_DIMS}
+    want = {name: var.dims for name, var in variables(spec).items()} | {"chunk_done": CHUNK_DIMS}
     want |= {d: (d,) for d in DIMS}
+    if spec.field_stations:
+        want["station"] = ("station",)
     for name, dims in want.items():
         shape = tuple(sizes[d] for d in dims)
         try:
@@ -307,19 +352,22 @@ class ChunkWriter:
         self.path = Path(path)
         self.spec = spec
         group = zarr.open_group(str(self.path), mode="r+")
-        self._arrays = {name: group[name] for name in VARIABLES}
+        self._variables = variables(spec)
+        self._shapes = chunk_shapes(spec)
+        self._arrays = {name: group[name] for name in self._variables}
         self._marker = group["chunk_done"]
 
     def write(self, key: tuple[int, int, int], values: Mapping[str, np.ndarray]) -> None:
         """Write the chunk ``key`` = (ski, position, modulus) indices from a chunk function's
         result (validated first: nothing is written if any variable is missing or misshapen)."""
         i, j, k = key
-        n_mass, n_zone = len(self.spec.masses), len(self.spec.zones)
         data = {}
-        for name, var in VARIABLES.items():
+        for name, var in self._variables.items():
             if name not in values:
-                raise InputError(f"chunk function returned no {name!r} (needs {sorted(VARIABLES)})")
-            want = (n_mass, n_zone) if "zone" in var.dims else (n_mass,)
+                raise InputError(
+                    f"chunk function returned no {name!r} (needs {sorted(self._variables)})"
+                )
+            want = self._shapes[name]
             arr = np.asarray(values[name]).astype(var.dtype)
             if arr.shape != want:
                 raise InputError(
@@ -332,7 +380,7 @@ class ChunkWriter:
             # modulus of this (ski, position): rewriting them from each chunk is idempotent and
             # keeps every chunk self-contained (zarr's LocalStore replaces each chunk file
             # atomically, so a kill never leaves a torn file).
-            index = tuple(where.get(d, slice(None)) for d in VARIABLES[name].dims)
+            index = tuple(where.get(d, slice(None)) for d in self._variables[name].dims)
             self._arrays[name][index] = arr
         self._marker[i, j, k] = 1
 
