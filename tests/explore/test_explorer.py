@@ -210,8 +210,8 @@ def test_cli_writes_a_page_and_refuses_bad_options(tmp_path: Path, capsys) -> No
     from skisnow.cli import main
 
     out = tmp_path / "e.html"
-    args = ["explore", "skate", "--mass-kg", "30,60", "--load-position-mm", "-120", "--workers", "0",
-            "--snow-modulus-mpa", "100", "--out", str(out), "--json"]  # fmt: skip
+    args = ["explore", "skate", "--mass-kg", "30,60", "--load-position-mm", "-120",
+            "--workers", "0", "--snow-modulus-mpa", "100", "--out", str(out), "--json"]  # fmt: skip
     assert main(args) == 0
     doc = json.loads(capsys.readouterr().out)
     assert doc["points"] == 2 and doc["converged"] is True and out.stat().st_size > 10_000
