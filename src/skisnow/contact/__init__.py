@@ -16,7 +16,7 @@ from skisnow.contact._flexible import (
     solve_flexible,
     solve_flexible_ski,
 )
-from skisnow.contact._io import fields_table, read_profile, write_fields
+from skisnow.contact._io import fields_table, read_fields, read_profile, write_fields
 from skisnow.contact._kernels import (
     Convolution,
     line_convolution,
@@ -71,6 +71,7 @@ __all__ = [
     "line_kernel",
     "patches",
     "polonsky_keer",
+    "read_fields",
     "read_profile",
     "reference",
     "snow",

@@ -3,7 +3,8 @@
 * :func:`read_profile` — a CSV with columns ``x_mm,height_mm`` (a rigid loaded camber profile,
   e.g. a measured one) → (x [m], height [m]) on a uniform grid;
 * :func:`fields_table` / :func:`write_fields` — ``x_mm,pressure_kpa,gap_um,snow_displacement_um``
-  along the ski, so that anyone can check the balance laws (Σ p·w·dx = m·g).
+  along the ski, so that anyone can check the balance laws (Σ p·w·dx = m·g); :func:`read_fields`
+  reads them back.
 """
 
 from __future__ import annotations
@@ -20,10 +21,52 @@ from skisnow.contact._solver import ContactSolution
 if TYPE_CHECKING:  # pandas is imported on use: the solver's users (sweep workers) never need it
     import pandas as pd
 
-__all__ = ["fields_table", "read_profile", "write_fields"]
+__all__ = ["fields_table", "read_fields", "read_profile", "write_fields"]
 
 PROFILE_COLUMNS = ("x_mm", "height_mm")
 FIELD_COLUMNS = ("x_mm", "pressure_kpa", "gap_um", "snow_displacement_um")
+
+
+def _read_columns(path: Path, columns: tuple[str, ...], what: str):
+    """Read the finite numeric ``columns`` of a CSV (``#`` comments allowed): ``(values, line)``
+    where ``line(i)`` names data row ``i`` by its file line, as the user counts."""
+    import pandas as pd
+
+    if not path.is_file():
+        raise FileFormatError(f"{path}: no such {what} file")
+    header = ",".join(columns)
+    try:
+        text = path.read_text(encoding="utf-8")
+        table = pd.read_csv(io.StringIO(text), comment="#")
+    except (ValueError, OSError) as exc:  # pandas' parser and empty-data errors are ValueErrors
+        raise FileFormatError(
+            f"{path}: cannot be read as a UTF-8 CSV table with columns {header} ({exc})"
+        ) from None
+    # file line (1-based, as the user counts) of each data row: comments and blanks skipped
+    data_lines = [
+        no for no, line in enumerate(text.splitlines(), start=1) if line.split("#", 1)[0].strip()
+    ][1:]
+
+    def line(i: int) -> str:
+        return f"line {data_lines[i]}" if i < len(data_lines) else f"data row {i + 1}"
+
+    missing = [c for c in columns if c not in table.columns]
+    if missing:
+        raise FileFormatError(
+            f"{path}: missing column(s) {', '.join(missing)}; a {what} file needs columns "
+            f"{header} (found: {', '.join(map(str, table.columns)) or 'none'})"
+        )
+    values = {}
+    for col in columns:
+        v = pd.to_numeric(table[col], errors="coerce").to_numpy(dtype=float)
+        bad = np.flatnonzero(~np.isfinite(v))
+        if bad.size:
+            raise FileFormatError(
+                f"{path}: {line(int(bad[0]))}, column {col}: {table[col].iloc[bad[0]]!r} is not "
+                "a finite number"
+            )
+        values[col] = v
+    return values, line
 
 
 def read_profile(path: str | Path, *, resample: bool = True) -> tuple[np.ndarray, np.ndarray]:
@@ -39,42 +82,8 @@ def read_profile(path: str | Path, *, resample: bool = True) -> tuple[np.ndarray
         Missing file or columns, non-numeric or non-finite cells (with row and column),
         non-increasing x.
     """
-    import pandas as pd
-
     path = Path(path)
-    if not path.is_file():
-        raise FileFormatError(f"{path}: no such profile file")
-    try:
-        text = path.read_text(encoding="utf-8")
-        table = pd.read_csv(io.StringIO(text), comment="#")
-    except (ValueError, OSError) as exc:  # pandas' parser and empty-data errors are ValueErrors
-        raise FileFormatError(
-            f"{path}: cannot be read as a UTF-8 CSV table with columns x_mm,height_mm ({exc})"
-        ) from None
-    # file line (1-based, as the user counts) of each data row: comments and blanks skipped
-    data_lines = [
-        no for no, line in enumerate(text.splitlines(), start=1) if line.split("#", 1)[0].strip()
-    ][1:]
-
-    def line(i: int) -> str:
-        return f"line {data_lines[i]}" if i < len(data_lines) else f"data row {i + 1}"
-
-    missing = [c for c in PROFILE_COLUMNS if c not in table.columns]
-    if missing:
-        raise FileFormatError(
-            f"{path}: missing column(s) {', '.join(missing)}; a profile needs columns "
-            f"x_mm,height_mm (found: {', '.join(map(str, table.columns)) or 'none'})"
-        )
-    values = {}
-    for col in PROFILE_COLUMNS:
-        v = pd.to_numeric(table[col], errors="coerce").to_numpy(dtype=float)
-        bad = np.flatnonzero(~np.isfinite(v))
-        if bad.size:
-            raise FileFormatError(
-                f"{path}: {line(int(bad[0]))}, column {col}: {table[col].iloc[bad[0]]!r} is not "
-                "a finite number"
-            )
-        values[col] = v
+    values, line = _read_columns(path, PROFILE_COLUMNS, "profile")
     from skisnow._checks import check_array
 
     for col, quantity in (("x_mm", "x"), ("height_mm", "camber_height")):
@@ -136,3 +145,37 @@ def write_fields(solution: ContactSolution, path: str | Path) -> Path:
     from skisnow._atomic import atomic_write
 
     return atomic_write(path, fields_table(solution).to_csv(index=False, float_format="%.10g"))
+
+
+def read_fields(path: str | Path) -> dict[str, np.ndarray]:
+    """Read a fields file of :func:`write_fields` back (SI units): ``x`` [m], ``pressure``
+    [Pa], ``gap`` [m], ``displacement`` [m] along the ski.
+
+    Raises
+    ------
+    FileFormatError
+        Missing file or columns, a non-numeric or non-finite cell, x not strictly increasing or a
+        negative pressure (each naming the file line and column).
+    """
+    path = Path(path)
+    values, line = _read_columns(path, FIELD_COLUMNS, "fields")
+    x = values["x_mm"]
+    if x.size < 2:
+        raise FileFormatError(f"{path}: a fields file needs at least 2 rows, found {x.size}")
+    bad = np.flatnonzero(np.diff(x) <= 0)
+    if bad.size:
+        raise FileFormatError(
+            f"{path}: {line(int(bad[0]) + 1)}, column x_mm: x_mm must increase strictly"
+        )
+    neg = np.flatnonzero(values["pressure_kpa"] < 0)
+    if neg.size:
+        raise FileFormatError(
+            f"{path}: {line(int(neg[0]))}, column pressure_kpa: a contact pressure is >= 0, got "
+            f"{values['pressure_kpa'][neg[0]]:g}"
+        )
+    return {
+        "x": x * 1e-3,
+        "pressure": values["pressure_kpa"] * 1e3,
+        "gap": values["gap_um"] * 1e-6,
+        "displacement": values["snow_displacement_um"] * 1e-6,
+    }
