@@ -10,10 +10,12 @@ import typer
 
 from skisnow.cli._app import app
 from skisnow.cli._render import (
+    DaskWorkersOption,
     JsonOption,
     LoadPositionGridOption,
     MassGridOption,
     ProfileSourceOption,
+    SchedulerOption,
     SnowModulusGridOption,
     emit_json,
     err_console,
@@ -42,14 +44,8 @@ def explore(
             "(a switch on the page).",
         ),
     ] = "rigid",
-    workers: Annotated[
-        int | None,
-        typer.Option("--workers", help="Local Dask workers (default: one per core; 0: no Dask)."),
-    ] = None,
-    scheduler: Annotated[
-        str | None,
-        typer.Option("--scheduler", envvar="SKISNOW_SCHEDULER", help="Existing Dask scheduler."),
-    ] = None,
+    workers: DaskWorkersOption = None,
+    scheduler: SchedulerOption = None,
     store: Annotated[
         Path | None,
         typer.Option(

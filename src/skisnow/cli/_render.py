@@ -36,6 +36,21 @@ SnowModulusGridOption = Annotated[
     str, typer.Option("--snow-modulus-mpa", help="Snow moduli E_counter (MPa).")
 ]
 NPointsOption = Annotated[int, typer.Option("--n-points", help="Grid points along the ski.")]
+#: Dask options shared by the commands that sweep (sweep, report, explore); defaults per command.
+DaskWorkersOption = Annotated[
+    int | None,
+    typer.Option(
+        "--workers", help="Local Dask workers (0: in this process, no Dask; unset: one per core)."
+    ),
+]
+SchedulerOption = Annotated[
+    str | None,
+    typer.Option(
+        "--scheduler",
+        envvar="SKISNOW_SCHEDULER",
+        help="Address of an existing dask.distributed scheduler (default: a local cluster).",
+    ),
+]
 SkiModelOption = Annotated[
     str,
     typer.Option(

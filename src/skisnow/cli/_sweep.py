@@ -10,11 +10,13 @@ import typer
 from skisnow._errors import InputError
 from skisnow.cli._app import app
 from skisnow.cli._render import (
+    DaskWorkersOption,
     JsonOption,
     LoadPositionGridOption,
     MassGridOption,
     NPointsOption,
     ProfileSourceOption,
+    SchedulerOption,
     SkiModelOption,
     SnowModulusGridOption,
     emit_json,
@@ -34,20 +36,8 @@ def sweep(
     mass_kg: MassGridOption = "5:130:1",
     load_position_mm: LoadPositionGridOption = "-120",
     snow_modulus_mpa: SnowModulusGridOption = "20:400:20",
-    scheduler: Annotated[
-        str | None,
-        typer.Option(
-            "--scheduler",
-            envvar="SKISNOW_SCHEDULER",
-            help="Address of an existing dask.distributed scheduler (default: a local cluster).",
-        ),
-    ] = None,
-    workers: Annotated[
-        int | None,
-        typer.Option(
-            "--workers", help="Local-cluster workers (default: one per core; 0: no Dask)."
-        ),
-    ] = None,
+    scheduler: SchedulerOption = None,
+    workers: DaskWorkersOption = None,
     model: Annotated[str, typer.Option("--model", help="Contact model: strip or surface.")] = (
         "strip"
     ),
@@ -192,14 +182,9 @@ def report(
     load_position_mm: Annotated[
         float, typer.Option("--load-position-mm", help="Load position x_m (mm).")
     ] = -120.0,
-    workers: Annotated[
-        int | None, typer.Option("--workers", help="Dask workers for the maps (0: in process).")
-    ] = 0,
+    workers: DaskWorkersOption = 0,
     profile_source: ProfileSourceOption = "auto",
-    scheduler: Annotated[
-        str | None,
-        typer.Option("--scheduler", envvar="SKISNOW_SCHEDULER", help="Existing Dask scheduler."),
-    ] = None,
+    scheduler: SchedulerOption = None,
     mass_kg: MassGridOption = "5:130:5",
     snow_modulus_mpa: SnowModulusGridOption = "20:400:40",
     n_points: NPointsOption = 4096,
