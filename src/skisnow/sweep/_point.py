@@ -116,6 +116,7 @@ def contact_chunk(
     out["iterations"] = np.zeros(n_m, dtype=np.int32)
     out["residual"] = np.full(n_m, np.nan)
     out["converged"] = np.zeros(n_m, dtype=bool)
+    ski = spec.ski(ski_name)  # once per chunk: a shipped ski's file check or a ski file's parse
     n_f = spec.field_stations
     if n_f:
         from skisnow.pipeline import stations
@@ -124,9 +125,8 @@ def contact_chunk(
         for name in ("pressure_kpa", "base_um", "snow_um"):
             out[name] = np.full((n_m, n_f), np.nan)
         out["zone_code"] = np.zeros((n_m, n_f), dtype=np.int8)
-        out["x_mm"] = block_mean(stations(spec.ski(ski_name), spec.n_points), n_f) * 1e3
+        out["x_mm"] = block_mean(stations(ski, spec.n_points), n_f) * 1e3
     previous: np.ndarray | None = None
-    ski = spec.ski(ski_name)  # once per chunk: a shipped ski's file check or a ski file's parse
     for a, mass in enumerate(spec.masses):
         try:
             profile = None if not profiles else (profiles["x"], profiles["height"][a])
