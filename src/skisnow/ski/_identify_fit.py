@@ -19,9 +19,11 @@ from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
+from scipy.linalg import solveh_banded
 from scipy.optimize import least_squares, minimize_scalar
 
 from skisnow._errors import InputError
+from skisnow.ski._fem import boot_load_vector
 from skisnow.ski._identify_model import _Case, _design, _Problem
 from skisnow.ski._lcp import lower_hull_bracket
 from skisnow.ski._skis import Ski
@@ -69,6 +71,30 @@ def _zero_load_profile(cases: list[_Case]) -> tuple[NDArray[np.float64], NDArray
     return a.x, a.h - a.mass * (hb - a.h) / (b.mass - a.mass)
 
 
+def _unloaded_camber(
+    problem: _Problem, case: _Case, theta_e: NDArray[np.float64]
+) -> NDArray[np.float64] | None:
+    """z0 at the bins of ``case`` (a light load): its profile minus the deflection of the beam
+    with stiffness ``theta_e`` under the boot load and two point reactions at the centroids of
+    the measured contact patches behind and in front of the load (lever rule). None if a
+    patch is not measured."""
+    thr = float(np.min(case.h)) + 3.0 * problem.sigma
+    xc = case.m_total / case.f_total
+    on = case.h <= thr
+    rear, front = on & (case.x < xc), on & (case.x > xc)
+    if not rear.any() or not front.any():
+        return None
+    xr, xf = float(np.mean(case.x[rear])), float(np.mean(case.x[front]))
+    rr = case.f_total * (xf - xc) / (xf - xr)
+    nodes = problem.nodes
+    f = case.f_boot.copy()
+    for xp, rp in ((xr, rr), (xf, case.f_total - rr)):
+        f -= boot_load_vector(nodes, rp, xp, 0.0, "point")  # upward
+    ab, _ = problem._stiffness(theta_e)
+    u = solveh_banded(ab, problem._clamp(f), check_finite=False)
+    return case.h - case.hermite @ u
+
+
 def fit_bench(
     problem: _Problem,
     cases: list[_Case],
@@ -97,20 +123,27 @@ def fit_bench(
     c_z = np.linalg.lstsq(a_z, z_start, rcond=None)[0]
     phi0 = problem.q_z.T @ c_z
     if initial is None:
+        light = min(cases, key=lambda c: c.mass)
+        a_light = problem.q_z.T @ np.linalg.pinv(_design(problem.t_z, light.x))
+
+        def start(log_ei: float) -> NDArray[np.float64]:
+            theta = np.full(n_stiffness, log_ei)
+            z = _unloaded_camber(problem, light, theta)
+            return np.concatenate([theta, phi0 if z is None else a_light @ z])
+
         # a constant EI: the best on this z0, by a bounded scalar search of log EI
         def misfit(log_ei: float) -> float:
-            r, _ = problem.evaluate(
-                np.concatenate([np.full(n_stiffness, log_ei), phi0]), jacobian=False
-            )
+            r, _ = problem.evaluate(start(log_ei), jacobian=False)
             return float(r @ r)
 
         best_log = minimize_scalar(
             misfit, bounds=(np.log(30.0), np.log(3e4)), method="bounded",
             options={"xatol": 0.02},
         ).x  # fmt: skip
-        theta_e0 = np.full(n_stiffness, float(best_log))
+        p = start(float(best_log))
         say(f"start: constant EI {np.exp(best_log):.0f} N m², z0 extrapolated to zero load")
-    p = np.concatenate([theta_e0, phi0])
+    else:
+        p = np.concatenate([theta_e0, phi0])
 
     # EI between 1 and 1e6 N m² (a ski is 100-10000): keeps the trust region off overflow
     lower = np.concatenate([np.full(n_stiffness, -10.0), np.full(n_camber - 2, -np.inf)])
