@@ -32,72 +32,130 @@ def bench():
 
 
 def _problem(bench, **kw):
-    """The internal least-squares problem and start of identify_ski (captured, not solved)."""
+    """The residuals and start of the first least-squares fit of identify_ski (captured, not
+    solved): the exact contact when a start is given, else the first smoothed stage."""
     captured = {}
 
     class Stop(Exception):
         pass
 
-    def capture(fun, p0, **_):
-        captured["fun"], captured["p0"], captured["jac"] = fun, p0, _["jac"]
+    def capture(residuals, p0, *_, **__):
+        captured["fun"] = lambda p: residuals(p, False)[0]
+        captured["jac"] = lambda p: residuals(p, True)[1]
+        captured["p0"] = p0
         raise Stop
 
-    orig = ident_fit.least_squares
-    ident_fit.least_squares = capture
+    orig = ident_fit.levenberg_marquardt
+    ident_fit.levenberg_marquardt = capture
     try:
         ident.identify_ski(bench, **kw)
     except Stop:
         pass
     finally:
-        ident_fit.least_squares = orig
+        ident_fit.levenberg_marquardt = orig
     return captured
+
+
+def _check_jacobian(c, n_stiffness: int, rel: float, steps=(1e-5, 1e-8)) -> int:
+    rng = np.random.default_rng(0)
+    p0 = c["p0"]
+    p = p0 + rng.normal(0, 1, p0.size) * np.r_[np.full(n_stiffness, 0.05), np.full(28, 2e-5)]
+    j = c["jac"](p)
+    checked = 0
+    for k in range(p.size):
+        step = steps[0] if k < n_stiffness else steps[1]
+        e = np.zeros_like(p)
+        e[k] = step
+        fd = (c["fun"](p + e) - c["fun"](p - e)) / (2 * step)
+        if np.linalg.norm(fd) < 1e-3 * np.linalg.norm(j):
+            continue  # a spline coefficient the data barely see (noise of the contact solve)
+        assert np.linalg.norm(j[:, k] - fd) <= rel * np.linalg.norm(fd), k
+        checked += 1
+    return checked
 
 
 def test_jacobian_is_the_derivative_of_the_residuals(bench) -> None:
     # The tangent through the beam at its active set against central differences (the active
     # set does not change for these small steps).
     c = _problem(bench, element_length=0.01, n_stiffness=8, n_camber=30, lambdas=(1e3,),
+                 continuation=(), initial=TRUE)  # fmt: skip
+    assert _check_jacobian(c, 8, 2e-3) >= 20
+
+
+def test_jacobian_of_the_smoothed_contact(bench) -> None:
+    # The implicit-function Jacobian of the smoothed stone (first stage of the homotopy from
+    # the default start) against central differences: the residuals are smooth there (steps
+    # of 1 µm in z0, inside the width ε = 10 µm and far above the Newton tolerance).
+    c = _problem(bench, element_length=0.01, n_stiffness=8, n_camber=30, lambdas=(1e3,),
                  continuation=())  # fmt: skip
-    rng = np.random.default_rng(0)
-    p = c["p0"] + rng.normal(0, 1, c["p0"].size) * np.r_[np.full(8, 0.05), np.full(28, 2e-5)]
-    j = c["jac"](p)
-    checked = 0
-    for k in range(p.size):
-        step = 1e-5 if k < 8 else 1e-8
-        e = np.zeros_like(p)
-        e[k] = step
-        fd = (c["fun"](p + e) - c["fun"](p - e)) / (2 * step)
-        if np.linalg.norm(fd) < 1e-3 * np.linalg.norm(j):
-            continue  # a spline coefficient the data barely see (noise of the LCP tolerance)
-        assert np.linalg.norm(j[:, k] - fd) <= 2e-3 * np.linalg.norm(fd), k
-        checked += 1
-    assert checked >= 20
+    assert _check_jacobian(c, 8, 2e-3, steps=(1e-3, 1e-6)) >= 20
 
 
 def test_the_fit_stays_at_the_truth_with_bands(bench) -> None:
     # Consistency: started at the true ski, the noisy bench does not pull the estimate away —
-    # EI within 5 % rms between the glide zones, misfit at the noise, the noise estimated from
-    # the data, z0 (modulo the rigid line the bench cannot see) within its bands.
+    # EI within its Gauss–Newton band (noise only: with a small λ the regularisation bias is
+    # below it) and within the 5 % target between the glide zones, the noise estimated from the
+    # data, z0 (modulo the rigid line the bench cannot see) within the 10 µm target.
     true = TRUE
-    res = ident.identify_ski(bench, initial=true, lambdas=(1e3,), max_nfev=10, continuation=())
+    res = ident.identify_ski(bench, initial=true, lambdas=(10.0,), max_nfev=10, continuation=())
     ski = res.ski
     assert res.noise == pytest.approx(NOISE, rel=0.1)
-    assert res.residual_rms < 1.3 * NOISE
+    assert res.residual_rms < NOISE
     x = np.linspace(-0.45, 0.40, 86)  # between the glide zones
-    err = ski.stiffness(x) / true.stiffness(x) - 1
+    err = np.log(ski.stiffness(x) / true.stiffness(x))
+    assert ski.stiffness_log_sd is not None and ski.camber_sd is not None
+    sd = np.interp(x, ski.stiffness_x, ski.stiffness_log_sd)
+    assert np.all(np.abs(err) < 3 * sd)
     assert np.sqrt(np.mean(err**2)) < 0.05
-    # z0 from four masses at one position: the zero-load extrapolation leaves a smooth bow
-    # (measured 13 µm rms: the 10 µm target is missed in this sparse case); the Gauss–Newton
-    # band of z0 is of the same order mid-ski (sd ≈ 10 µm)
     xz = np.linspace(-0.85, 0.80, 331)
     d = ski.free_camber(xz) - true.free_camber(xz)
     d -= np.polyval(np.polyfit(xz, d, 1), xz)
-    assert ski.stiffness_log_sd is not None and ski.camber_sd is not None
-    assert np.sqrt(np.mean(d**2)) < 20e-6
-    sd_mid = float(np.interp(0.0, ski.camber_x, ski.camber_sd))
-    assert 3e-6 < sd_mid < 30e-6
+    assert np.sqrt(np.mean(d**2)) < 10e-6
     assert min(ski.stiffness_log_sd) > 0
     assert ski.provenance.detail("criterion") == "given" or res.criterion == "gcv"
+
+
+def _pocket_classic():
+    """A classic ski made only for this test: a kick-wax pocket in a flat-ended camber arch,
+    flat glide zones (the case where the fit from the default start used to diverge)."""
+    from skisnow.ski._shipped import _build_glide
+
+    return _build_glide(
+        name="pocket", kind="classic", x_tail=-0.95, x_tip=1.0, supports=(-0.6, 0.52),
+        camber=2.5e-3, camber_power=2.65, glide_radii=(40.0, 30.0), glide_power=2.0,
+        pocket=(0.4e-3, -0.3, 0.25), hump=None, ei_mid=1600.0, ei_end=150.0, ei_power=1.0,
+        kick_zone=(-0.3, 0.25), description="test ski of tests/ski/test_identify.py",
+    )  # fmt: skip
+
+
+def test_round_trip_from_the_default_start_on_a_classic_with_a_pocket() -> None:
+    # Known ski -> noisy user bench (4 masses at one position, tip and tail not measured) ->
+    # identify_ski from its default start -> the identified ski as a Ski on the beam again.
+    # Convergence: the identified ski explains the bench almost as well as the true ski (its
+    # systematic misfit is below half the noise: rms < 1.1 × the true ski's), and it predicts
+    # loaded profiles the bench did not measure (35 and 75 kg at -160 mm) within the noise.
+    from skisnow.ski import solve_beam
+
+    true = _pocket_classic()
+    masses, positions = (20, 40, 60, 80), (-0.12,)
+    data = run_bench(true, masses=masses, load_positions=positions, noise=NOISE, seed=5)
+    t = data.table
+    bench = dataclasses.replace(
+        data, table=t[(t["x_mm"] > -900) & (t["x_mm"] < 850)].reset_index(drop=True)
+    )
+    res = ident.identify_ski(bench, max_nfev=40)
+
+    def misfit(ski):
+        model = run_bench(ski, masses=masses, load_positions=positions).table
+        m = bench.table.merge(model, on=["mass_kg", "load_position_mm", "x_mm"])
+        return np.sqrt(np.mean((m["height_mm_x"] - m["height_mm_y"]) ** 2)) * 1e-3
+
+    assert misfit(res.ski) < 1.1 * misfit(true)
+    xs = np.linspace(-0.88, 0.83, 400)
+    for m in (35.0, 75.0):
+        h_id = solve_beam(res.ski, mass=m, load_position=-0.16).sample(xs)
+        h_true = solve_beam(true, mass=m, load_position=-0.16).sample(xs)
+        assert np.sqrt(np.mean((h_id - h_true) ** 2)) < NOISE
 
 
 def test_identified_ski_is_a_valid_file(bench, tmp_path: Path) -> None:

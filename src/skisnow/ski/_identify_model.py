@@ -162,6 +162,8 @@ class _Problem:
         self.n_params = n_stiffness + n_camber - 2
         self.warm: list[NDArray[np.float64] | None] = [None] * len(cases)
         self.warm_active: list[NDArray[np.bool_] | None] = [None] * len(cases)
+        #: (u, a, b) of the last contact solution of each case
+        self.last_state: list[tuple[NDArray[np.float64], float, float] | None] = [None] * len(cases)
         self.n_data = int(sum(c.x.size for c in cases))
 
     # -- parameters
@@ -239,13 +241,15 @@ class _Problem:
             if not ok:
                 raise ConvergenceError(
                     f"beam contact of load case m = {c.mass:g} kg, x_m = {c.position * 1e3:g} mm "
-                    "did not converge during the identification"
+                    "did not converge during the identification",
+                    result=None,
                 )
             active, r, a, b = sol_.active, sol_.reactions, sol_.translation, sol_.rotation
             self.warm[k] = r
             self.warm_active[k] = active.copy()
             act = np.flatnonzero(active)
             u = u_boot + flex_full[:, act] @ r[act]
+            self.last_state[k] = (u, float(a), float(b))
             hmod = self.phi_z_cases[k] @ theta_z + a + b * c.x + c.hermite @ u
             res_parts.append(c.w * (hmod - c.h) / self.sigma)
             if not jacobian:
@@ -284,7 +288,7 @@ class _Problem:
         jac = np.concatenate(jac_parts) if jacobian else None
         return res, jac
 
-    def penalty_matrix(self, lam: float) -> NDArray[np.float64]:
+    def penalty_matrix(self, lam: float, lam_z: float = _LAMBDA_Z) -> NDArray[np.float64]:
         """Rows of the penalty residual sqrt(λ) D₂ θ_E, sqrt(λ₁) D₁ θ_E, sqrt(λ_z) D₂ θ_z / z_ref
         (linear in p). The weak first-difference term (λ₁ = 1) fixes the log-EI trend where
         the bench carries no bending moment (the free overhangs): there the data leave log EI
@@ -298,7 +302,7 @@ class _Problem:
                 [d1, np.zeros((self.n_e - 1, self.n_z - 2))], axis=1)],
             axis=0,
         )  # fmt: skip
-        rows_z = np.sqrt(_LAMBDA_Z) * np.concatenate(
+        rows_z = np.sqrt(lam_z) * np.concatenate(
             [np.zeros((self.n_z - 2, self.n_e)), self.d2_z @ self.q_z], axis=1
         )
         return np.concatenate([rows_e, rows_z], axis=0)
