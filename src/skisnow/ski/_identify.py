@@ -23,23 +23,50 @@ unilateral contact with the rigid stone, loaded by m·g through the boot plate a
   differentiating them gives, per load case, one banded solve per stiffness parameter
   (K⁻¹ ∂K/∂θ_j u) and one small KKT solve (the same matrix as the forward problem). The active
   set is piecewise constant in p, so this is the derivative wherever it is defined.
-* Optimiser: SciPy's trust-region reflective least squares (``scipy.optimize.least_squares``)
-  with that Jacobian.
+* Start: z0 from the lightest profile "unloaded" by the beam — its measured heights minus the
+  deflection of the beam under the boot load and two point reactions at the centroids of the
+  measured contact patches (lever rule) — at each trial constant EI, and the constant EI that
+  fits all profiles best on it (a bounded scalar search).
+* Homotopy in the contact: with the exact unilateral contact the residuals have a kink at
+  every switch of the contact set (the glide zones pressed flat on the stone switch node by
+  node with µm changes of z0), and far from the solution the damped Gauss–Newton steps
+  collapse. From the default start the fit therefore runs first on a smoothed stone (a softplus
+  penalty of width ε; :mod:`skisnow.ski._identify_smooth`): the light load cases (continuation
+  in load), then all of them with ε = 10, 3, 1, 0.3, 0.1 µm, then on the exact contact.
+* Optimiser: Levenberg–Marquardt on the normal equations (Marquardt 1963) with the exact
+  Jacobian, halving a rejected step along its direction before raising the damping (a kink of
+  the contact set), and a stop when the Gauss–Newton step would lower the σ-normalised sum of
+  squares by less than 0.01 (:func:`skisnow.ski._identify_fit.levenberg_marquardt` says why not
+  SciPy's ``least_squares``).
 * Regularisation: λ on the second differences of log-EI coefficients, chosen by generalised
-  cross-validation (GCV, Craven & Wahba 1979) on the Gauss–Newton linearisation at each fit,
-  over a grid of λ (fits warm-started from the previous λ). λ_z is fixed small (z_ref = 1 mm,
-  λ_z = 1): z0 is measured directly almost everywhere; the term only continues z0 smoothly over
-  ends the bench did not measure.
+  cross-validation (GCV, Craven & Wahba 1979; Wahba 1990, §4.3) on the Gauss–Newton
+  linearisation around ONE converged fit (at the geometric middle of the λ grid): for every λ of
+  the grid the penalised linear step, its residual sum of squares and the trace of its
+  influence matrix (a few 110 × 110 solves), then one warm-started fit at the chosen λ. λ_z is
+  fixed small (z_ref = 1 mm, λ_z = 1): z0 is measured directly almost everywhere; the term only
+  continues z0 smoothly over ends the bench did not measure.
 * Uncertainty: the Gauss–Newton (sandwich) covariance of the penalised estimate,
   (JᵀJ + P)⁻¹ JᵀJ (JᵀJ + P)⁻¹ with σ-normalised residuals, propagated to log EI and to z0 (in
   the rest-on-the-plane gauge) at the stations of the identified ski. It is the noise-only
   (linearised) uncertainty; it does not include the bias of the regularisation.
 
+Accuracy (``benchmarks/bench_identify.py``, 10 µm noise; the README's identification table has
+the measured numbers): with a full bench sequence EI is within about 1-3 % and z0 within a few
+µm. Two limits remain. (1) From the default start the exact stage can still stall on the kinks
+of the contact set short of the optimum: started at the true ski the same user bench gives EI
+within 2 % and z0 within 3 µm, from the default start 3-8 % and 8-22 µm. (2) Contact results on
+snow depend on z0 within a few µm over the few centimetres of a contact zone; the z0 spline
+(``n_camber`` = 100 coefficients, ≈ 20 mm knots) cannot follow a curvature jump there (the
+skate's glide hump): with noise-free data the skate's contact lengths are 7.6 % off at 100
+coefficients and 2.5 % at 200, but with 10 µm noise more coefficients make the fit worse
+(measured at 150 and 200: a z0 smoothing chosen from the data would be needed).
+
 This module holds the public entry point :func:`identify_ski` (input checks, binning of the
 bench, the identified :class:`~skisnow.ski.Ski` with its provenance) and its result
 :class:`IdentificationResult`; the spline parametrisation, forward model and Jacobian are in
-:mod:`skisnow.ski._identify_model`, the fit (start, continuation, GCV, bands) in
-:mod:`skisnow.ski._identify_fit`.
+:mod:`skisnow.ski._identify_model`, the smoothed contact of the homotopy in
+:mod:`skisnow.ski._identify_smooth`, the fit (start, homotopy, Levenberg–Marquardt, GCV,
+bands) in :mod:`skisnow.ski._identify_fit`.
 """
 
 from __future__ import annotations
@@ -84,7 +111,9 @@ class IdentificationResult:
     criterion
         How λ was chosen (``'gcv'`` or ``'given'``).
     gcv
-        ``((λ, GCV score, misfit rms / σ, effective degrees of freedom), ...)`` of the search.
+        ``((λ, GCV score, misfit rms / σ, effective degrees of freedom), ...)`` of the search:
+        of the Gauss–Newton linearisation around the fit at the middle of the grid, and for the
+        chosen λ of its own fit.
     noise
         Bench noise σ [m] used to normalise residuals (estimated from the scatter inside bins,
         or given).
@@ -188,14 +217,17 @@ def identify_ski(
     noise
         Bench noise σ [m]; default estimated from the scatter inside the bins.
     regularisation
-        λ; default chosen by GCV over ``lambdas``.
+        λ; default chosen by GCV over ``lambdas`` (on the linearisation around one fit).
     initial
-        A starting ski; default z0 from the two lightest profiles extrapolated to zero load
-        and the constant EI that fits best on it.
+        A starting ski (the fit then goes to the exact contact directly); default z0 from the
+        lightest profile unloaded by the beam and the constant EI that fits best on it, then
+        the homotopy on the smoothed contact (module docstring).
     max_nfev
-        Evaluation limit of each least-squares fit (each λ warm-started from the previous).
+        Residual evaluations allowed to each stage of the fit (each homotopy stage, the fit at
+        the middle of the λ grid and the fit at the chosen λ).
     continuation
-        Fractions of the bench's masses fitted first, in turn (lightest first).
+        Fractions of the bench's masses fitted first, in turn (lightest first, on the smoothed
+        contact of width 10 µm; default start only).
     progress
         Called with a short message after each stage.
     source
@@ -331,6 +363,7 @@ def identify_ski(
             sources=(
                 "Kalliorinne, K., et al. (2023): the camber bench and its load sequence (§3.1)",
                 "Craven, P., Wahba, G. (1979): generalized cross-validation",
+                "Marquardt, D. W. (1963): the Levenberg-Marquardt method",
             ),
             created=time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
             software=f"skisnow {_version()}",

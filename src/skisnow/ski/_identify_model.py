@@ -267,9 +267,9 @@ class _Problem:
             kappa = np.einsum("eqa,ea->eq", self.bq, ue)
             coef = self.wq * ei_q * kappa  # (n_el, nq)
             contrib = np.einsum("eq,eqa,eqj->eaj", coef, self.bq, self.phi_q)  # (n_el, 4, nE)
-            g_mat = np.zeros((2 * n, self.n_e))
-            for a_ in range(4):
-                np.add.at(g_mat, 2 * np.arange(n - 1) + a_, contrib[:, a_, :])
+            g_mat = np.zeros((2 * n, self.n_e))  # assembled: element e holds DOFs 2e..2e+3
+            g_mat[: 2 * n - 2] += contrib[:, 0:2, :].reshape(2 * n - 2, self.n_e)
+            g_mat[2:] += contrib[:, 2:4, :].reshape(2 * n - 2, self.n_e)
             g_mat[2 * self.clamp : 2 * self.clamp + 2] = 0.0
             v = solveh_banded(ab, g_mat, check_finite=False)  # K^-1 dK u  (2n, nE)
             rhs_e = np.zeros((na + 2, self.n_e))
