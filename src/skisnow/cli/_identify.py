@@ -44,7 +44,7 @@ def identify(
         int, typer.Option("--n-camber", help="Spline coefficients of z0(x).")
     ] = 100,
     max_nfev: Annotated[
-        int, typer.Option("--max-nfev", help="Evaluation limit of each least-squares fit.")
+        int, typer.Option("--max-nfev", help="Evaluation limit of each stage of the fit.")
     ] = 60,
     figure: Annotated[
         Path | None,

@@ -69,7 +69,8 @@ class BenchFit:
 
 
 def _zero_load_profile(cases: list[_Case]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
-    """A start for z0: the two lightest profiles at the load position with the most profiles,
+    """The fallback start for z0 (when a contact patch of the lightest profile is not
+    measured): the two lightest profiles at the load position with the most profiles,
     extrapolated linearly to zero load station by station (the deflection grows about linearly
     with the load while the contact set changes little; the rigid part is the gauge)."""
     positions = [c.position for c in cases]
@@ -153,7 +154,7 @@ def fit_bench(
             options={"xatol": 0.02},
         ).x  # fmt: skip
         p = start(float(best_log))
-        say(f"start: constant EI {np.exp(best_log):.0f} N m², z0 extrapolated to zero load")
+        say(f"start: constant EI {np.exp(best_log):.0f} N m², z0 the lightest profile unloaded")
     else:
         p = np.concatenate([theta_e0, phi0])
 
