@@ -84,6 +84,19 @@ def _zero_load_profile(cases: list[_Case]) -> tuple[NDArray[np.float64], NDArray
     return a.x, a.h - a.mass * (hb - a.h) / (b.mass - a.mass)
 
 
+def _camber_fit(problem: _Problem, x: NDArray[np.float64]) -> NDArray[np.float64]:
+    """The matrix from z0 at stations ``x`` to the z0 parameters: least squares on the spline
+    basis with a weak penalty on second differences of the coefficients, which continues z0
+    along a straight line beyond the stations (a minimum-norm solution would pull the
+    coefficients the stations do not see to zero: an unmeasured tip then drops onto the stone
+    and carries the ski), then without its linear part (invisible to the bench)."""
+    a = _design(problem.t_z, x)
+    d2 = np.diff(np.eye(problem.n_z), 2, axis=0)
+    w = 0.1  # [-]: curvature rows of weight 0.1 against z0 rows: a start, not an estimate
+    m = np.linalg.solve(a.T @ a + w**2 * d2.T @ d2, a.T)
+    return problem.q_z.T @ m
+
+
 def _unloaded_camber(
     problem: _Problem, case: _Case, theta_e: NDArray[np.float64]
 ) -> NDArray[np.float64] | None:
@@ -132,29 +145,38 @@ def fit_bench(
     else:
         z_start_x, z_start = _zero_load_profile(cases)
     # full-basis fit, then drop its linear part (invisible to the bench): Q is orthonormal
-    a_z = _design(problem.t_z, z_start_x)
-    c_z = np.linalg.lstsq(a_z, z_start, rcond=None)[0]
-    phi0 = problem.q_z.T @ c_z
+    phi0 = _camber_fit(problem, z_start_x) @ z_start
     if initial is None:
         light = min(cases, key=lambda c: c.mass)
-        a_light = problem.q_z.T @ np.linalg.pinv(_design(problem.t_z, light.x))
+        a_light = _camber_fit(problem, light.x)
 
-        def start(log_ei: float) -> NDArray[np.float64]:
+        def start(log_ei: float, unload: bool) -> NDArray[np.float64]:
             theta = np.full(n_stiffness, log_ei)
-            z = _unloaded_camber(problem, light, theta)
+            z = _unloaded_camber(problem, light, theta) if unload else None
             return np.concatenate([theta, phi0 if z is None else a_light @ z])
 
-        # a constant EI: the best on this z0, by a bounded scalar search of log EI
-        def misfit(log_ei: float) -> float:
-            r, _ = problem.evaluate(start(log_ei), jacobian=False)
+        def misfit(log_ei: float, unload: bool) -> float:
+            try:
+                r, _ = problem.evaluate(start(log_ei, unload), jacobian=False)
+            except (ConvergenceError, np.linalg.LinAlgError):
+                return np.inf
             return float(r @ r)
 
+        # A constant EI: the best on its z0 (the lightest profile unloaded by the beam at that
+        # EI, or, as a fallback when the unloading picks wrong contact patches, the zero-load
+        # extrapolation), on a grid of log EI first (the misfit can have several minima), then
+        # refined around the best grid point by a bounded scalar search.
+        grid_log = np.linspace(np.log(30.0), np.log(3e4), 13)
+        table = [(misfit(float(v), u), k, u) for u in (True, False) for k, v in enumerate(grid_log)]
+        _, k, unload = min(table, key=lambda item: item[0])
+        lo, hi = grid_log[max(k - 1, 0)], grid_log[min(k + 1, grid_log.size - 1)]
         best_log = minimize_scalar(
-            misfit, bounds=(np.log(30.0), np.log(3e4)), method="bounded",
+            lambda v: misfit(v, unload), bounds=(lo, hi), method="bounded",
             options={"xatol": 0.02},
         ).x  # fmt: skip
-        p = start(float(best_log))
-        say(f"start: constant EI {np.exp(best_log):.0f} N m², z0 the lightest profile unloaded")
+        p = start(float(best_log), unload)
+        how = "the lightest profile unloaded" if unload else "extrapolated to zero load"
+        say(f"start: constant EI {np.exp(best_log):.0f} N m², z0 {how}")
     else:
         p = np.concatenate([theta_e0, phi0])
 
@@ -231,7 +253,7 @@ def fit_bench(
         def cost_at(pp: NDArray[np.float64]) -> float:
             try:
                 rr, _, pen = residuals(pp, False)
-            except ConvergenceError:
+            except (ConvergenceError, np.linalg.LinAlgError):
                 return np.inf
             rp = pen @ pp
             return float(rr @ rr + rp @ rp)
@@ -362,7 +384,7 @@ def levenberg_marquardt(
                 try:
                     r_new, _, _ = residuals(p_new, False)
                     cost_new = cost_of(r_new, p_new)
-                except ConvergenceError:  # a contact solve failed at the trial: reject it
+                except (ConvergenceError, np.linalg.LinAlgError):  # a failed solve: reject
                     cost_new = np.inf
                 rho = (cost - cost_new) / max(predicted, 1e-300)
                 if (predicted > 0 and rho > 1e-4) or nfev >= max_nfev:
