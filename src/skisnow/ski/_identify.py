@@ -25,8 +25,10 @@ unilateral contact with the rigid stone, loaded by m·g through the boot plate a
   set is piecewise constant in p, so this is the derivative wherever it is defined.
 * Start: z0 from the lightest profile "unloaded" by the beam — its measured heights minus the
   deflection of the beam under the boot load and two point reactions at the centroids of the
-  measured contact patches (lever rule) — at each trial constant EI, and the constant EI that
-  fits all profiles best on it (a bounded scalar search).
+  measured contact patches (lever rule) — at each trial constant EI (or, if that fits worse,
+  the two lightest profiles extrapolated to zero load), continued along a straight line beyond
+  the measured stations, and the constant EI that fits all profiles best on it (a grid of log
+  EI, then a bounded scalar search).
 * Homotopy in the contact: with the exact unilateral contact the residuals have a kink at
   every switch of the contact set (the glide zones pressed flat on the stone switch node by
   node with µm changes of z0), and far from the solution the damped Gauss–Newton steps
@@ -54,7 +56,8 @@ Accuracy (``benchmarks/bench_identify.py``, 10 µm noise; the README's identific
 the measured numbers): with a full bench sequence EI is within about 1-3 % and z0 within a few
 µm. Two limits remain. (1) From the default start the exact stage can still stall on the kinks
 of the contact set short of the optimum: started at the true ski the same user bench gives EI
-within 2 % and z0 within 3 µm, from the default start 3-8 % and 8-22 µm. (2) Contact results on
+within 2 % and z0 within 3 µm, from the default start EI 2-7 % and z0 3-27 µm (noise seeds
+1-5). (2) Contact results on
 snow depend on z0 within a few µm over the few centimetres of a contact zone; the z0 spline
 (``n_camber`` = 100 coefficients, ≈ 20 mm knots) cannot follow a curvature jump there (the
 skate's glide hump): with noise-free data the skate's contact lengths are 7.6 % off at 100

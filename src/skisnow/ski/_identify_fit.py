@@ -5,7 +5,8 @@ al. 2023, §3.1, eq. 1) against every profile of the bench, with the exact Jacob
 
 1. Start: z0 from the lightest profile unloaded by the beam (its heights minus the deflection
    under the boot load and lever-rule reactions at the measured contact patches), at each trial
-   constant EI, and the constant EI that fits all profiles best on it.
+   constant EI, or the two lightest profiles extrapolated to zero load if that fits better, and
+   the constant EI that fits all profiles best on it (grid of log EI, then a scalar search).
 2. Homotopy (default start only): the load cases up to a third, then two thirds of the mass
    range, then all of them, on the smoothed stone of width ε = 10 µm, then ε = 3, 1, 0.3,
    0.1 µm (:mod:`skisnow.ski._identify_smooth`), at the largest λ of the grid.
