@@ -51,7 +51,8 @@ class BenchFit:
     Attributes
     ----------
     solution
-        SciPy's ``OptimizeResult`` of the final least-squares fit at the chosen λ.
+        The final Levenberg–Marquardt fit at the chosen λ (parameters ``x``, residuals, Jacobian,
+        ``nfev``, ``status`` > 0 when converged, ``message``).
     regularisation
         The chosen λ.
     records
