@@ -474,7 +474,16 @@ def write_shipped(doc: dict, path: Path) -> Path:
             f" Kick zone {a * 1e3:.0f} .. {b * 1e3:.0f} mm (0.2 mm rear and 0.1 mm front marks "
             "at half body weight)."
         )
-    text += " CHOSEN by a fit, not measured: no public EI(x) or camber table of a XC ski."
+    if doc.get("ei_shape_weight"):
+        text += (
+            f" EI(x) held to one peak with neighbouring knots within {EI_STEP_MAX:g}x (chosen: "
+            "a core thickest near the binding, tapering to the tips)."
+        )
+    text += (
+        " FITTED numbers: the captions (lengths, mean pressures, load shares, patch counts);"
+        " the Figure 8-9 findings are predictions."
+        " CHOSEN by a fit, not measured: no public EI(x) or camber table of a XC ski."
+    )
     provenance = Provenance(
         method="calibrated: spline ski fitted to the captions of Kalliorinne et al. (2023), "
         "Figs. 4-7 (benchmarks/calibrate_skis.py: differential evolution, then least squares)",
@@ -486,7 +495,11 @@ def write_shipped(doc: dict, path: Path) -> Path:
         software=f"skisnow {__version__}",
         details=(
             ("seed", int(doc["seed"])),
-            ("generations", int(doc["generations"])),
+            ("generations", int(doc.get("generations_run", doc["generations"]))),
+            ("hinge_weight", float(doc.get("hinge_weight", 2.0))),
+            ("topology_weight", float(doc.get("topology_weight", 0.0))),
+            ("ei_shape_weight", float(doc.get("ei_shape_weight", 0.0))),
+            ("starts", json.dumps(doc.get("starts", ["START"]))),
             ("popsize", int(doc["popsize"])),
             ("evaluations", int(doc["evaluations"])),
             ("caption_misfit", round(float(doc["caption_misfit"]), 3)),
