@@ -499,7 +499,15 @@ def write_shipped(doc: dict, path: Path) -> Path:
             ("hinge_weight", float(doc.get("hinge_weight", 2.0))),
             ("topology_weight", float(doc.get("topology_weight", 0.0))),
             ("ei_shape_weight", float(doc.get("ei_shape_weight", 0.0))),
-            ("starts", json.dumps(doc.get("starts", ["START"]))),
+            (
+                "starts",
+                json.dumps(
+                    [
+                        "the ski shipped before, sampled at the knots" if s == "shipped" else s
+                        for s in doc.get("starts", ["START"])
+                    ]
+                ),
+            ),
             ("popsize", int(doc["popsize"])),
             ("evaluations", int(doc["evaluations"])),
             ("caption_misfit", round(float(doc["caption_misfit"]), 3)),
