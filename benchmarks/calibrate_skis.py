@@ -475,9 +475,13 @@ def write_shipped(doc: dict, path: Path) -> Path:
             "at half body weight)."
         )
     if doc.get("ei_shape_weight"):
+        log_ei = np.log(np.array(doc["ei_n_m2"]))
+        peak = int(np.argmax(log_ei))
+        step = float(np.exp(np.max(np.abs(np.diff(log_ei)))))
         text += (
-            f" EI(x) held to one peak with neighbouring knots within {EI_STEP_MAX:g}x (chosen: "
-            "a core thickest near the binding, tapering to the tips)."
+            f" EI(x) fitted under shape limits (one peak, neighbouring knots within "
+            f"{EI_STEP_MAX:g}x; chosen, not sourced): peak {doc['ei_n_m2'][peak]:.0f} N m² at "
+            f"{doc['ei_knots_m'][peak] * 1e3:+.0f} mm, largest neighbour step {step:.1f}x."
         )
     text += (
         " FITTED numbers: the captions (lengths, mean pressures, load shares, patch counts);"

@@ -36,8 +36,9 @@ def _zones(name: str, mass: float, pos: float, e_snow: float):  # type: ignore[n
 def test_classic_three_zones_when_the_load_moves_forward() -> None:
     # Fig. 6 right: 60 kg at -70 mm, 100 MPa -> rear, middle (kick zone) and front carry load
     z = _zones("classic", 60.0, -0.070, 100e6)
-    for name in ("rear", "front", "kick"):
+    for name in ("rear", "middle", "front", "kick"):
         assert z[name].length > 0 and z[name].load_share > 0.05, name
+    assert z["middle"].patches == 1  # a separate third patch under the foot
     # Fig. 6 left: 60 kg at -210 mm -> the kick zone stays free, the rear zone carries most
     z = _zones("classic", 60.0, -0.210, 100e6)
     assert z["middle"].length == 0.0
