@@ -83,7 +83,14 @@ def main() -> None:
     ap.add_argument("--retrain", action="store_true", help="train both skis (timed)")
     ap.add_argument("--save", action="store_true", help="with --retrain: overwrite shipped models")
     ap.add_argument("--skis", default="classic,skate")
+    ap.add_argument("--lm-steps", type=int, default=None, help="override SHIPPED_SETTINGS")
+    ap.add_argument("--lm-points", type=int, default=None, help="override SHIPPED_SETTINGS")
     args = ap.parse_args()
+    settings = dict(SHIPPED_SETTINGS)
+    if args.lm_steps is not None:
+        settings["lm_steps"] = args.lm_steps
+    if args.lm_points is not None:
+        settings["lm_points"] = args.lm_points
 
     from rich.console import Console
     from rich.table import Table
@@ -112,7 +119,7 @@ def main() -> None:
                         highlight=False,
                     )
 
-            net = train_network(bench, progress=report, **SHIPPED_SETTINGS)
+            net = train_network(bench, progress=report, **settings)  # type: ignore[arg-type]
             t_train = time.perf_counter() - t0
             if args.save:
                 save_network(net, MODELS / name)

@@ -173,10 +173,13 @@ def test_kick_zone_validation(bumps) -> None:
 
 
 # Strip vs surface on the shipped skis (beam profiles, 1024 stations ≈ 1.9 mm, 8 cells across):
-# measured on these six cases, zone lengths differ by at most 2 stations (the surface model's
-# contact is up to 2 stations longer: the pressure concentrates at the ski's edges across the
-# width and spreads the contact a little), mean pressures by at most 4.9 % (surface higher), and
-# load shares by at most 0.0014. The test allows 2.5 stations, 6 % and 0.005.
+# the surface model's contact is a little longer (the pressure concentrates at the ski's edges
+# across the width and spreads each patch by about a station at its ends), so zone lengths may
+# differ by a couple of stations per patch of the zone: the test allows 2.5 stations per patch
+# (measured on the skis of version 1, one patch per zone: at most 2 stations; on the classic of
+# version 2, whose rear glide zone at 30 kg / 50 MPa has two patches: 3 stations). Mean
+# pressures differ by at most 4.9 % (surface higher) and load shares by at most 0.0014 on
+# version 1. The test allows 6 % and 0.005.
 CASES = [
     ("classic", 30, -0.12, 50e6),
     ("classic", 60, -0.21, 100e6),
@@ -201,7 +204,7 @@ def test_strip_agrees_with_surface_on_shipped_skis(name, mass, xm, e_snow) -> No
     for zone in ("rear", "middle", "front"):
         a, b = strip[zone], surf[zone]
         assert a.patches > 0 or zone == "middle"
-        assert abs(a.length - b.length) <= 2.5 * dx
+        assert abs(a.length - b.length) <= 2.5 * dx * max(a.patches, 1)
         if a.patches:
             assert a.mean_pressure == pytest.approx(b.mean_pressure, rel=0.06)
             assert abs(a.load_share - b.load_share) < 0.005
