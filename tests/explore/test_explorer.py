@@ -105,11 +105,14 @@ def test_display_pressure_carries_the_load(dataset) -> None:
 
 
 def test_metrics_are_the_solvers(dataset) -> None:
+    # The reference is solved to 1e-11: at the default 1e-8 a cold flexible solve of the classic
+    # (60 kg, -40 mm, 200 MPa) can stop with one edge cell of near-zero pressure still open
+    # (front 131.0 against 132.9 mm at 1e-11), which the warm-started explorer has closed.
     from skisnow.pipeline import solve_case
 
     for model in ("rigid", "flexible"):
         zones = solve_case("classic", mass=60.0, load_position=-0.04, snow_modulus=200e6,
-                           n_points=GRID.n_points, ski_model=model).zones  # fmt: skip
+                           n_points=GRID.n_points, ski_model=model, tol=1e-11).zones  # fmt: skip
         point = dataset.sel(ski="classic", model=model, mass_kg=60.0, load_position_mm=-40.0,
                             snow_modulus_mpa=200.0)  # fmt: skip
         _same_zones(point, zones)
