@@ -62,7 +62,21 @@ snow depend on z0 within a few µm over the few centimetres of a contact zone; t
 (``n_camber`` = 100 coefficients, ≈ 20 mm knots) cannot follow a curvature jump there (the
 skate's glide hump): with noise-free data the skate's contact lengths are 7.6 % off at 100
 coefficients and 2.5 % at 200, but with 10 µm noise more coefficients make the fit worse
-(measured at 150 and 200: a z0 smoothing chosen from the data would be needed).
+(measured at 150 and 200: a z0 smoothing chosen from the data would be needed). Diagnosis
+(``benchmarks/bench_identify_contact.py``): the misses are in the zone lengths (the mean
+pressures follow them), mostly from z0: the true ski carrying the identified z0 misses by as
+much as the identified ski (the skate's 60 kg front zone by 8.9-10 %), the true ski carrying the
+identified EI by 0.6-2.3 %, except the 60 kg rear zone of the classic and stiff user benches
+(6.3, 7.5 %, the EI error, of the same size as z0's there). The contact results are that
+sensitive to z0: a Gaussian bump of 1 µm (sd 20 mm) on the true z0 changes them by 1.9-2.5 %, of
+3 µm by 3.8-6.5 % (skate, classic, stiff), while 10 µm noise on the user bench leaves z0 errors
+of 1.5-4.5 µm in the contact zones (starting at the true ski too: the skate user bench then
+still misses by 10 %). Refined z0 knots (6 mm in the bench's contact windows) with a curvature
+penalty λ_z ∫ z0''² dx chosen by GCV together with λ remove the resolution floor without noise
+(skate user 8.9 → 2.5 %) but with 10 µm noise make the user benches worse (skate 8.9 → 11.4 %,
+classic 3.2 → 19 %, stiff 7.7 → 16 %) and help the full benches only partly (skate 7.6 → 4.3 %,
+stiff 4.8 → 4.0 %, classic 1.8 → 3.9 %), with stalled fits (misfit 1.1-1.3 σ at the evaluation
+limit), so they are not used.
 
 This module holds the public entry point :func:`identify_ski` (input checks, binning of the
 bench, the identified :class:`~skisnow.ski.Ski` with its provenance) and its result
