@@ -76,7 +76,11 @@ penalty λ_z ∫ z0''² dx chosen by GCV together with λ remove the resolution 
 (skate user 8.9 → 2.5 %) but with 10 µm noise make the user benches worse (skate 8.9 → 11.4 %,
 classic 3.2 → 19 %, stiff 7.7 → 16 %) and help the full benches only partly (skate 7.6 → 4.3 %,
 stiff 4.8 → 4.0 %, classic 1.8 → 3.9 %), with stalled fits (misfit 1.1-1.3 σ at the evaluation
-limit), so they are not used.
+limit), so they are not used. (Measured on the skis shipped at commit 0320ddc: classic and skate
+of version 1, and the stiff test ski of the benchmark. On the classic of version 2, shipped
+since bcb39eb, EI 57-6140 N m² with a stiff spot behind the foot, the default start fails: the
+homotopy stalls at 30 σ on the user bench and the full bench raises ConvergenceError, while
+started at the true ski the fit reaches 0.99 σ.)
 
 This module holds the public entry point :func:`identify_ski` (input checks, binning of the
 bench, the identified :class:`~skisnow.ski.Ski` with its provenance) and its result
