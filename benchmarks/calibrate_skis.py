@@ -196,11 +196,19 @@ def topology(ski: Ski, solved: list) -> dict[str, float]:
     if ski.kind == "skate":
         by_mass = {round(c.mass): z for c, z in snow}
         z30, z60 = by_mass[30], by_mass[60]
-        return {
+        out = {
             "rear_growth_30_60": z60["rear"].length / max(z30["rear"].length, 1e-6),
             "front_patches_30": float(z30["front"].patches),
             "front_patches_60": float(z60["front"].patches),
+            "front_pressure_growth_30_60": z60["front"].mean_pressure
+            / max(z30["front"].mean_pressure, 1e-6),
         }
+        for m in (30.0, 65.0):  # the bench (rigid plane, -120 mm): front patches
+            sol = solve_beam(ski, mass=m, load_position=-0.120)
+            out[f"bench_front_patches_{m:.0f}"] = float(
+                sum(1 for a, _ in sol.contact_intervals if a > 0.1)
+            )
+        return out
     (z70,) = [z for c, z in snow if round(c.mass) == 60 and abs(c.load_position + 0.07) < 1e-6]
     return {"middle_patches_60_70": float(z70["middle"].patches)}
 
@@ -210,15 +218,31 @@ def topology(ski: Ski, solved: list) -> dict[str, float]:
 REAR_GROWTH_MIN = 1.25
 
 
+#: ``--bench-topology``: the skate's front also one patch at 30 kg and two at 65 kg on the bench
+#: (-120 mm), and its front mean pressure rising from 30 to 60 kg on 100 MPa by at least
+#: FRONT_PRESSURE_GROWTH_MIN (paper 13.8 -> 28.9 kPa).
+BENCH_TOPOLOGY = [False]
+FRONT_PRESSURE_GROWTH_MIN = 1.2
+
+
 def topology_residuals(kind: str, topo: dict[str, float]) -> list[float]:
     """Residuals of the topology (0 when it holds), in the units of a patch-count miss."""
     if kind == "skate":
         g = topo["rear_growth_30_60"]
-        return [
+        res = [
             max(0.0, math.log(REAR_GROWTH_MIN) - math.log(max(g, 1e-6))) / math.log(1.2),
             abs(topo["front_patches_30"] - 1.0),
             abs(topo["front_patches_60"] - 2.0),
         ]
+        if BENCH_TOPOLOGY[0]:  # Fig. 8 (split at ~35 kg on stiff snow), Fig. 5 captions
+            gp = topo["front_pressure_growth_30_60"]
+            res += [
+                abs(topo["bench_front_patches_30"] - 1.0),
+                abs(topo["bench_front_patches_65"] - 2.0),
+                max(0.0, math.log(FRONT_PRESSURE_GROWTH_MIN) - math.log(max(gp, 1e-6)))
+                / math.log(1.25),
+            ]
+        return res
     return [abs(topo["middle_patches_60_70"] - 1.0)]
 
 
@@ -557,6 +581,11 @@ def main() -> None:
         "--ei-shape-weight", type=float, default=0.0,
         help="weight of the EI shape hinges (unimodal log EI, neighbour steps <= 8x)",
     )  # fmt: skip
+    ap.add_argument(
+        "--bench-topology", action="store_true",
+        help="skate: topology residuals also for the bench front patches (1 at 30 kg, 2 at 65 kg) "
+        "and the front mean pressure rising from 30 to 60 kg on 100 MPa",
+    )  # fmt: skip
     ap.add_argument("--tag", default="", help="suffix of the record name, e.g. _v2")
     ap.add_argument("--sigma", type=float, default=0.08, help="population spread (unit box)")
     ap.add_argument(
@@ -575,6 +604,7 @@ def main() -> None:
             continue
         WEIGHTS["hinge"], WEIGHTS["topology"] = args.hinge_weight, args.topology_weight
         WEIGHTS["ei_shape"] = args.ei_shape_weight
+        BENCH_TOPOLOGY[0] = args.bench_topology
         starts = []
         for src in args.start or []:
             if src == "shipped":
@@ -600,6 +630,7 @@ def main() -> None:
             "hinge_weight": args.hinge_weight,
             "topology_weight": args.topology_weight,
             "ei_shape_weight": args.ei_shape_weight,
+            "bench_topology": args.bench_topology,
             "starts": args.start or ["START"],
             "sigma": args.sigma,
             "evaluations": result["evaluations"],
