@@ -13,7 +13,7 @@ import pytest
 from skisnow import InputError
 from skisnow.ski import _identify as ident
 from skisnow.ski import _identify_fit as ident_fit
-from skisnow.ski import read_ski, run_bench
+from skisnow.ski import get_ski, read_ski, run_bench, solve_beam
 from skisnow.ski._shipped import build_shipped
 
 NOISE = 1e-5  # m: a bench's 10 µm
@@ -198,3 +198,37 @@ def test_cli_identify(bench, tmp_path: Path, capsys: pytest.CaptureFixture[str])
     assert read_ski(out).name == "classic (identified)"
     assert main(["identify", str(src), "--out", str(tmp_path / "x.csv")]) != 0
     assert "ski file (.json)" in capsys.readouterr().err
+
+
+@pytest.mark.parametrize("name", ["classic", "skate"])
+def test_identifies_the_shipped_ski_from_a_user_bench(name: str) -> None:
+    # Issue 12: the shipped skis (the classic of version 2: EI 57-6200 N m² with a stiff spot
+    # behind the foot, tip rising 31 mm) from what a user has — four masses at one position,
+    # 10 µm noise, tip and tail not measured — from the default start. The fit must reach the
+    # noise: its rms misfit no worse than the true ski's own on the same data (10 % slack for
+    # the ~120 fitted parameters' share of the noise), and its noise-free profiles at the
+    # bench's loads must be the true ski's within the noise (it found the ski, not the noise).
+    # Not asserted (a known miss, module docstring of skisnow.ski._identify): profiles at
+    # masses between the bench's, where the contact rolls over glide-zone stations no bench
+    # load presses (classic, 50 kg: 54-57 µm for seeds 1 and 5).
+    true = get_ski(name)
+    data = run_bench(true, masses=(20, 40, 60, 80), load_positions=(-0.12,), noise=NOISE,
+                     seed=5)  # fmt: skip
+    t = data.table
+    keep = (t["x_mm"] > -900) & (t["x_mm"] < 850)
+    bench = dataclasses.replace(data, table=t[keep].reset_index(drop=True))
+    t = bench.table
+    sq = 0.0
+    for (m, p), grp in t.groupby(["mass_kg", "load_position_mm"]):
+        h = solve_beam(true, mass=float(m), load_position=float(p) * 1e-3).sample(
+            grp["x_mm"].to_numpy() * 1e-3
+        )
+        sq += float(np.sum((h - grp["height_mm"].to_numpy() * 1e-3) ** 2))
+    true_rms = np.sqrt(sq / len(t))
+    res = ident.identify_ski(bench, max_nfev=40)
+    assert res.residual_rms < 1.1 * true_rms
+    xs = np.linspace(-0.88, 0.83, 300)
+    for m in (20.0, 40.0, 60.0, 80.0):
+        hi = solve_beam(res.ski, mass=m, load_position=-0.12).sample(xs)
+        ht = solve_beam(true, mass=m, load_position=-0.12).sample(xs)
+        assert np.sqrt(np.mean((hi - ht) ** 2)) < NOISE
