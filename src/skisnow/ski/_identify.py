@@ -25,11 +25,18 @@ unilateral contact with the rigid stone, loaded by m·g through the boot plate a
   set is piecewise constant in p, so this is the derivative wherever it is defined.
 * Start: z0 from the lightest profile "unloaded" by the beam — its measured heights minus the
   deflection of the beam under the boot load and two point reactions at the centroids of the
-  measured contact patches (lever rule) — at each trial constant EI (or, if that fits worse,
-  the two lightest profiles extrapolated to zero load), continued along a straight line beyond
-  the measured stations, and the constant EI that fits all profiles best on it (a grid of log
-  EI, then a bounded scalar search).
-* Homotopy in the contact: with the exact unilateral contact the residuals have a kink at
+  measured contact patches, or of the outermost patch on each side (lever rule) — at each trial
+  constant EI (or, if that fits worse, the two lightest profiles extrapolated to zero load),
+  continued along a straight line beyond the measured stations, and the constant EI that fits
+  all profiles best on it (a grid of log EI, then a bounded scalar search). Then the shape of
+  EI(x) from the differences between load cases, in which z0 cancels: with the contact
+  reactions of the model the bending moments are statics, h_k − h_1 = ∫ (x − s)₊ ΔM_k / EI ds
+  + a line, fitted in log EI; the start is re-made with it (z0 unloaded at the new EI, the
+  level of log EI on a grid) and the contacts re-solved while the misfit falls, in sequences
+  on the lightest third, half and all of the masses; the best start by misfit.
+* Homotopy in the contact (only when the EI shape does not improve on the constant start: from
+  a good start it pulls the fit away, at the largest λ of the grid and on the smoothed stone):
+  with the exact unilateral contact the residuals have a kink at
   every switch of the contact set (the glide zones pressed flat on the stone switch node by
   node with µm changes of z0), and far from the solution the damped Gauss–Newton steps
   collapse. From the default start the fit therefore runs first on a smoothed stone (a softplus
@@ -52,35 +59,31 @@ unilateral contact with the rigid stone, loaded by m·g through the boot plate a
   the rest-on-the-plane gauge) at the stations of the identified ski. It is the noise-only
   (linearised) uncertainty; it does not include the bias of the regularisation.
 
-Accuracy (``benchmarks/bench_identify.py``, 10 µm noise; the README's identification table has
-the measured numbers): with a full bench sequence EI is within about 1-3 % and z0 within a few
-µm. Two limits remain. (1) From the default start the exact stage can still stall on the kinks
-of the contact set short of the optimum: started at the true ski the same user bench gives EI
-within 2 % and z0 within 3 µm, from the default start EI 2-7 % and z0 3-27 µm (noise seeds
-1-5). (2) Contact results on
-snow depend on z0 within a few µm over the few centimetres of a contact zone; the z0 spline
-(``n_camber`` = 100 coefficients, ≈ 20 mm knots) cannot follow a curvature jump there (the
-skate's glide hump): with noise-free data the skate's contact lengths are 7.6 % off at 100
-coefficients and 2.5 % at 200, but with 10 µm noise more coefficients make the fit worse
-(measured at 150 and 200: a z0 smoothing chosen from the data would be needed). Diagnosis
-(``benchmarks/bench_identify_contact.py``): the misses are in the zone lengths (the mean
-pressures follow them), mostly from z0: the true ski carrying the identified z0 misses by as
-much as the identified ski (the skate's 60 kg front zone by 8.9-10 %), the true ski carrying the
-identified EI by 0.6-2.3 %, except the 60 kg rear zone of the classic and stiff user benches
-(6.3, 7.5 %, the EI error, of the same size as z0's there). The contact results are that
-sensitive to z0: a Gaussian bump of 1 µm (sd 20 mm) on the true z0 changes them by 1.9-2.5 %, of
-3 µm by 3.8-6.5 % (skate, classic, stiff), while 10 µm noise on the user bench leaves z0 errors
-of 1.5-4.5 µm in the contact zones (starting at the true ski too: the skate user bench then
-still misses by 10 %). Refined z0 knots (6 mm in the bench's contact windows) with a curvature
-penalty λ_z ∫ z0''² dx chosen by GCV together with λ remove the resolution floor without noise
-(skate user 8.9 → 2.5 %) but with 10 µm noise make the user benches worse (skate 8.9 → 11.4 %,
-classic 3.2 → 19 %, stiff 7.7 → 16 %) and help the full benches only partly (skate 7.6 → 4.3 %,
-stiff 4.8 → 4.0 %, classic 1.8 → 3.9 %), with stalled fits (misfit 1.1-1.3 σ at the evaluation
-limit), so they are not used. (Measured on the skis shipped at commit 0320ddc: classic and skate
-of version 1, and the stiff test ski of the benchmark. On the classic of version 2, shipped
-since bcb39eb, EI 57-6140 N m² with a stiff spot behind the foot, the default start fails: the
-homotopy stalls at 30 σ on the user bench and the full bench raises ConvergenceError, while
-started at the true ski the fit reaches 0.99 σ.)
+Accuracy (``benchmarks/bench_identify.py --ski classic skate stiff --coverage user full
+--max-nfev 40``, 10 µm noise, seed 1; the README's identification table has the numbers; the
+classic is the shipped classic of version 2, bcb39eb: EI 57-6200 N m² with a stiff spot behind
+the foot, tip rising 31 mm). From the default start every fit reaches the noise (misfit
+0.89-1.00 σ; before the EI shape from the load differences, the classic of version 2 stalled at
+30 σ on the user bench and raised ConvergenceError on the full one). Targets (EI 5 % rms, z0
+10 µm, held-out within the noise, contact within 5 %, full sequence < 60 s): full benches EI
+1.6-4.2 %, z0 3.5-10.6 µm (classic: missed), held-out 1.9-3.1 µm, 20-32 s; four-mass user
+benches EI 2.8 % (skate), 5.6 % (stiff, missed), 8.9 % (classic, missed), z0 14-22 µm
+(missed), held-out 5.7-14.2 µm (classic missed: between the bench's masses its contact rolls
+over glide-zone stations no bench load presses; at 50 kg the identified classic is 54-57 µm
+off for seeds 1 and 5, at the bench's own masses 2-4 µm); contact results 2.1-5.3 % except the
+skate (8.9 % user, 10.1 % full: missed). Contact results on snow depend on z0 within a few µm
+over the few centimetres of a contact zone; the z0 spline (``n_camber`` = 100 coefficients,
+≈ 20 mm knots) cannot follow a curvature jump there (the skate's glide hump): with noise-free
+data the skate's contact lengths are 7.6 % off at 100 coefficients and 2.5 % at 200, but with
+10 µm noise more coefficients make the fit worse (measured at 150 and 200: a z0 smoothing
+chosen from the data would be needed). Diagnosis (``benchmarks/bench_identify_contact.py``,
+measured on the skis shipped at commit 0320ddc, classic of version 1): the misses are in the
+zone lengths (the mean pressures follow them), mostly from z0: the true ski carrying the
+identified z0 misses by as much as the identified ski, the true ski carrying the identified EI
+by 0.6-2.3 %; a Gaussian bump of 1 µm (sd 20 mm) on the true z0 changes the contact results by
+1.9-2.5 %, of 3 µm by 3.8-6.5 %. Refined z0 knots (6 mm in the bench's contact windows) with a
+curvature penalty chosen by GCV removed the resolution floor without noise but with 10 µm noise
+made the user benches worse, so they are not used.
 
 This module holds the public entry point :func:`identify_ski` (input checks, binning of the
 bench, the identified :class:`~skisnow.ski.Ski` with its provenance) and its result
