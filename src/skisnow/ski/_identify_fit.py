@@ -30,6 +30,10 @@ al. 2023, §3.1, eq. 1) against every profile of the bench, with the exact Jacob
    (JᵀJ + P)⁻¹ JᵀJ (JᵀJ + P)⁻¹, propagated to log EI and to z0 in the rest-on-the-plane gauge.
 
 Each stage is a Levenberg–Marquardt fit on the normal equations (:func:`levenberg_marquardt`).
+A contact solve that fails at a trial point or at an accepted one rejects that step; a smoothed
+contact that fails ends the homotopy, and the fit goes on from its last point on the exact
+contact (measured with the EI shape switched off, on the full bench of the classic of version 2:
+misfit 2.8 σ, EI 8.8 % off, where it raised ConvergenceError before).
 Used by :func:`~skisnow.ski.identify_ski`.
 """
 
@@ -323,11 +327,12 @@ def fit_bench(
                 improved, best_cost = cost < 0.99 * best_cost, cost
                 if not improved:
                     break
-            say(
-                f"start: EI from the load differences of "
-                f"masses up to a fraction {frac:.2g}, misfit rms "
-                f"{np.sqrt(best_cost / problem.n_data):.3g} σ"
-            )
+            if best_cost < cost0:
+                say(
+                    f"start: EI from the load differences of "
+                    f"masses up to a fraction {frac:.2g}, misfit rms "
+                    f"{np.sqrt(best_cost / problem.n_data):.3g} σ"
+                )
         physics = best[0] < cost0
         _, p, shape = best
     else:
@@ -374,20 +379,25 @@ def fit_bench(
         # flatten the glide zones onto it, where the exact contact set switches with µm
         # changes of z0 and the misfit has a kink at every switch (module docstring of
         # skisnow.ski._identify_smooth).
+        # A smoothed contact that does not converge (Newton on a far start) ends the homotopy:
+        # the fit goes on from its last point on the exact contact instead of stopping.
         order = sorted({c.mass for c in cases})
-        for frac in continuation:
-            m_max = order[min(len(order) - 1, int(np.ceil(frac * len(order))) - 1)]
-            subset = [k for k, c in enumerate(cases) if c.mass <= m_max]
-            if 2 <= len(subset) < len(cases):
-                p = fit(p, lam0, subset, eps=_HOMOTOPY[0]).x
-                say(f"continuation: load cases up to {m_max:g} kg fitted (ε = 10 µm)")
-        for eps in _HOMOTOPY:
-            sol = fit(p, lam0, eps=eps)
-            p = sol.x
-            say(
-                f"smoothed contact ε = {eps * 1e6:g} µm: misfit rms {sol.misfit_rms:.3g} σ, "
-                f"{sol.nfev} evaluations"
-            )
+        try:
+            for frac in continuation:
+                m_max = order[min(len(order) - 1, int(np.ceil(frac * len(order))) - 1)]
+                subset = [k for k, c in enumerate(cases) if c.mass <= m_max]
+                if 2 <= len(subset) < len(cases):
+                    p = fit(p, lam0, subset, eps=_HOMOTOPY[0]).x
+                    say(f"continuation: load cases up to {m_max:g} kg fitted (ε = 10 µm)")
+            for eps in _HOMOTOPY:
+                sol = fit(p, lam0, eps=eps)
+                p = sol.x
+                say(
+                    f"smoothed contact ε = {eps * 1e6:g} µm: misfit rms {sol.misfit_rms:.3g} "
+                    f"σ, {sol.nfev} evaluations"
+                )
+        except ConvergenceError as exc:
+            say(f"homotopy stopped ({exc}); on to the exact contact")
     # the exact contact from here on
     lam0 = float(np.sqrt(max(grid) * max(min(grid), 1e-12))) if len(grid) > 1 else grid[0]
     sol = fit(p, lam0)
@@ -547,15 +557,19 @@ def levenberg_marquardt(
                 if (predicted > 0 and rho > 1e-4) or nfev >= max_nfev:
                     break
             if predicted > 0 and rho > 1e-4:
-                if alpha == 1.0:
-                    mu *= max(1.0 / 3.0, 1.0 - (2.0 * rho - 1.0) ** 3)
-                    nu = 2.0
-                p = p_new
-                small_steps = small_steps + 1 if 2.0 * (cost - cost_new) < tol else 0
-                r, j, _ = residuals(p, True)
-                cost = cost_of(r, p)
-                accepted = True
-                break
+                try:  # the Jacobian at the accepted point (a failed solve: reject the step)
+                    r_acc, j_acc, _ = residuals(p_new, True)
+                except (ConvergenceError, np.linalg.LinAlgError):
+                    r_acc = None
+                if r_acc is not None:
+                    if alpha == 1.0:
+                        mu *= max(1.0 / 3.0, 1.0 - (2.0 * rho - 1.0) ** 3)
+                        nu = 2.0
+                    small_steps = small_steps + 1 if 2.0 * (cost - cost_new) < tol else 0
+                    p, r, j = p_new, r_acc, j_acc
+                    cost = cost_of(r, p)
+                    accepted = True
+                    break
             if predicted < 0.1 * tol:  # the damped step can no longer lower the misfit
                 nu = 2.0**21  # by a meaningful amount: at the optimum within the model's noise
                 break
