@@ -7,9 +7,10 @@ from pathlib import Path
 from typing import Annotated
 
 import typer
+from rich.markup import escape
 
 from skisnow._errors import InputError
-from skisnow.cli._app import app
+from skisnow.cli._app import app, report_converged
 from skisnow.cli._render import JsonOption, emit_json, err_console, print_table
 
 
@@ -96,17 +97,22 @@ def identify(
         "residual_rms_mm": res.residual_rms * 1e3,
         "regularisation": res.regularisation,
         "criterion": res.criterion,
-        "converged": res.converged,
+        "converged": res.converged and res.at_noise,
+        "misfit_rms_sigma": res.misfit,
         "message": res.message,
+        "warnings": list(res.warnings),
         "seconds": res.seconds,
         "gcv": [
             {"lambda": lam, "gcv": g, "misfit_rms_sigma": m, "edf": e} for lam, g, m, e in res.gcv
         ],
     }
+    report_converged(res.converged and res.at_noise)  # exit code 3 when not
     if json_out:
         emit_json(doc)
         return
-    rows = [[k, v] for k, v in doc.items() if k != "gcv"]
+    for w in res.warnings:
+        err_console.print(f"[yellow]warning:[/yellow] {escape(w)}")
+    rows = [[k, v] for k, v in doc.items() if k not in ("gcv", "warnings")]
     print_table("Identified ski (passport: skisnow skis --show FILE)", ["", "value"], rows)
     print_table(
         "Regularisation (GCV)",
