@@ -370,7 +370,7 @@ def fit_bench(
     grid = [float(regularisation)] if regularisation is not None else [float(v) for v in lambdas]
     if any(not (np.isfinite(v) and v >= 0) for v in grid) or not grid:
         raise InputError(f"regularisation / lambdas must be finite and >= 0, got {grid}")
-    lam0 = max(grid)
+    lam_smooth = max(grid)
     if initial is None and not physics:
         # Homotopy from the default start (far from the solution): the load cases up to a
         # third, then two thirds of the mass range, then all of them, with the smoothed stone
@@ -387,10 +387,10 @@ def fit_bench(
                 m_max = order[min(len(order) - 1, int(np.ceil(frac * len(order))) - 1)]
                 subset = [k for k, c in enumerate(cases) if c.mass <= m_max]
                 if 2 <= len(subset) < len(cases):
-                    p = fit(p, lam0, subset, eps=_HOMOTOPY[0]).x
+                    p = fit(p, lam_smooth, subset, eps=_HOMOTOPY[0]).x
                     say(f"continuation: load cases up to {m_max:g} kg fitted (ε = 10 µm)")
             for eps in _HOMOTOPY:
-                sol = fit(p, lam0, eps=eps)
+                sol = fit(p, lam_smooth, eps=eps)
                 p = sol.x
                 say(
                     f"smoothed contact ε = {eps * 1e6:g} µm: misfit rms {sol.misfit_rms:.3g} "
@@ -410,7 +410,7 @@ def fit_bench(
     best = int(np.argmin([rec[1] for rec in records]))
     lam = grid[best]
     if lam != lam0:
-        start = sol.x + records[best][4]
+        p_refit = sol.x + records[best][4]
         residuals = residuals_of(lam, None, None)
 
         def cost_at(pp: NDArray[np.float64]) -> float:
@@ -421,9 +421,9 @@ def fit_bench(
             rp = pen @ pp
             return float(rr @ rr + rp @ rp)
 
-        if not cost_at(start) <= cost_at(sol.x):
-            start = sol.x
-        sol = fit(start, lam)
+        if not cost_at(p_refit) <= cost_at(sol.x):
+            p_refit = sol.x
+        sol = fit(p_refit, lam)
         say(f"fit at λ = {lam:.3g}: misfit rms {sol.misfit_rms:.3g} σ, {sol.nfev} evaluations")
     final = _gcv(sol, problem.penalty_matrix(lam), lam)
     table = tuple(
