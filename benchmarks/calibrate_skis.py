@@ -211,6 +211,7 @@ def topology(ski: Ski, solved: list) -> dict[str, float]:
             "front_patches_60": float(z60["front"].patches),
             "front_pressure_growth_30_60": z60["front"].mean_pressure
             / max(z30["front"].mean_pressure, 1e-6),
+            "rear_share_change_30_60": abs(z60["rear"].load_share - z30["rear"].load_share),
         }
         for m in (30.0, 65.0):  # the bench (rigid plane, -120 mm): front patches
             sol = solve_beam(ski, mass=m, load_position=-0.120)
@@ -223,15 +224,21 @@ def topology(ski: Ski, solved: list) -> dict[str, float]:
 
 
 #: Least growth of the skate's rear contact from 30 to 60 kg on 100 MPa asked by the topology
-#: residual (the paper's is 288/146 = 1.97).
-REAR_GROWTH_MIN = 1.25
+#: residual (the paper's is 288/146 = 1.97); ``--findings`` asks 1.4, the threshold of the
+#: findings test (tests/contact/test_zones.py).
+REAR_GROWTH_MIN = [1.25]
 
 
 #: ``--bench-topology``: the skate's front also one patch at 30 kg and two at 65 kg on the bench
 #: (-120 mm), and its front mean pressure rising from 30 to 60 kg on 100 MPa by at least
-#: FRONT_PRESSURE_GROWTH_MIN (paper 13.8 -> 28.9 kPa).
+#: FRONT_PRESSURE_GROWTH_MIN (paper 13.8 -> 28.9 kPa = 2.1x; the records up to
+#: calibration_skate_v3.json asked 1.2, ``--findings`` asks 1.5, the findings test's threshold).
 BENCH_TOPOLOGY = [False]
-FRONT_PRESSURE_GROWTH_MIN = 1.2
+FRONT_PRESSURE_GROWTH_MIN = [1.2]
+#: ``--findings``: also the rear/front load partition hardly changing from 30 to 60 kg on
+#: 100 MPa (paper 67 -> 71 %, a change of 0.04): a hinge at 0.04, one unit per load-share point.
+SHARE_CHANGE = [False]
+SHARE_CHANGE_MAX = 0.04
 
 
 def topology_residuals(kind: str, topo: dict[str, float]) -> list[float]:
@@ -239,7 +246,7 @@ def topology_residuals(kind: str, topo: dict[str, float]) -> list[float]:
     if kind == "skate":
         g = topo["rear_growth_30_60"]
         res = [
-            max(0.0, math.log(REAR_GROWTH_MIN) - math.log(max(g, 1e-6))) / math.log(1.2),
+            max(0.0, math.log(REAR_GROWTH_MIN[0]) - math.log(max(g, 1e-6))) / math.log(1.2),
             abs(topo["front_patches_30"] - 1.0),
             abs(topo["front_patches_60"] - 2.0),
         ]
@@ -248,9 +255,11 @@ def topology_residuals(kind: str, topo: dict[str, float]) -> list[float]:
             res += [
                 abs(topo["bench_front_patches_30"] - 1.0),
                 abs(topo["bench_front_patches_65"] - 2.0),
-                max(0.0, math.log(FRONT_PRESSURE_GROWTH_MIN) - math.log(max(gp, 1e-6)))
+                max(0.0, math.log(FRONT_PRESSURE_GROWTH_MIN[0]) - math.log(max(gp, 1e-6)))
                 / math.log(1.25),
             ]
+        if SHARE_CHANGE[0]:
+            res.append(max(0.0, topo["rear_share_change_30_60"] - SHARE_CHANGE_MAX) / 0.01)
         return res
     return [abs(topo["middle_patches_60_70"] - 1.0)]
 
@@ -595,6 +604,17 @@ def main() -> None:
         help="skate: topology residuals also for the bench front patches (1 at 30 kg, 2 at 65 kg) "
         "and the front mean pressure rising from 30 to 60 kg on 100 MPa",
     )  # fmt: skip
+    ap.add_argument(
+        "--findings", action="store_true",
+        help="skate: --bench-topology with the thresholds of the findings tests (rear growth "
+        ">= 1.4x, front mean pressure rise >= 1.5x from 30 to 60 kg on 100 MPa) and the rear "
+        "load share changing by <= 0.04 (paper 67 -> 71 %%)",
+    )  # fmt: skip
+    ap.add_argument(
+        "--front-pressure-growth-min", type=float, default=None,
+        help="with --findings: the least front mean pressure rise 30->60 kg (default 1.5; the "
+        "paper's is 2.1)",
+    )  # fmt: skip
     ap.add_argument("--tag", default="", help="suffix of the record name, e.g. _v2")
     ap.add_argument(
         "--k-range", type=float, nargs=2, default=None, metavar=("LO", "HI"),
@@ -617,7 +637,12 @@ def main() -> None:
             continue
         WEIGHTS["hinge"], WEIGHTS["topology"] = args.hinge_weight, args.topology_weight
         WEIGHTS["ei_shape"] = args.ei_shape_weight
-        BENCH_TOPOLOGY[0] = args.bench_topology
+        BENCH_TOPOLOGY[0] = args.bench_topology or args.findings
+        SHARE_CHANGE[0] = args.findings
+        if args.findings:
+            REAR_GROWTH_MIN[0], FRONT_PRESSURE_GROWTH_MIN[0] = 1.4, 1.5
+            if args.front_pressure_growth_min is not None:
+                FRONT_PRESSURE_GROWTH_MIN[0] = args.front_pressure_growth_min
         if args.k_range is not None:
             K_RANGE[:] = [float(v) for v in args.k_range]
         starts = []
@@ -645,7 +670,10 @@ def main() -> None:
             "hinge_weight": args.hinge_weight,
             "topology_weight": args.topology_weight,
             "ei_shape_weight": args.ei_shape_weight,
-            "bench_topology": args.bench_topology,
+            "bench_topology": args.bench_topology or args.findings,
+            "findings": args.findings,
+            "rear_growth_min": REAR_GROWTH_MIN[0],
+            "front_pressure_growth_min": FRONT_PRESSURE_GROWTH_MIN[0],
             "k_range_n_per_mm": list(K_RANGE),
             "starts": args.start or ["START"],
             "sigma": args.sigma,
