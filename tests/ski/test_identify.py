@@ -239,3 +239,47 @@ def test_identifies_the_shipped_ski_from_a_user_bench(name: str) -> None:
         hi = solve_beam(res.ski, mass=m, load_position=-0.12).sample(xs)
         ht = solve_beam(true, mass=m, load_position=-0.12).sample(xs)
         assert np.sqrt(np.mean((hi - ht) ** 2)) < NOISE
+
+
+def _stiff_skate():
+    """The ski made only for benchmarks/bench_identify.py ("stiff"): stiffer, asymmetric EI,
+    one flatter camber arch."""
+    from skisnow.ski._shipped import _build_glide
+
+    return _build_glide(
+        name="stiff", kind="skate", x_tail=-0.90, x_tip=0.95, supports=(-0.70, 0.62),
+        camber=4.0e-3, camber_power=2.0, glide_radii=(60.0, 40.0), glide_power=2.0,
+        pocket=None, hump=None, ei_mid=3000.0, ei_end=400.0, ei_power=1.5, kick_zone=None,
+        description="test ski of tests/ski/test_identify.py",
+    )  # fmt: skip
+
+
+def test_a_fit_that_stalls_above_the_noise_is_globalised() -> None:
+    # A user bench (four masses at one position, tip and tail not measured) at 5 µm noise on
+    # which the fit from the default start ends in a local minimum: measured before the
+    # globalisation, misfit 2.39 σ with EI 9.8 % and z0 39 µm off (the 80 kg load touched the
+    # stone under the foot 50 mm behind the true contact). With the smoothed-contact polish
+    # from the stalled fit (module docstring of skisnow.ski._identify_fit) the fit must reach
+    # the noise and the issue's targets: EI within 5 % rms between the glide zones, z0 within
+    # 10 µm rms (modulo the line the bench cannot see), and the identified ski's noise-free
+    # profiles at the bench's loads within the noise.
+    true = _stiff_skate()
+    noise = 5e-6
+    data = run_bench(true, masses=(20, 40, 60, 80), load_positions=(-0.12,), noise=noise,
+                     seed=1)  # fmt: skip
+    t = data.table
+    bench = dataclasses.replace(
+        data, table=t[(t["x_mm"] > -900) & (t["x_mm"] < 850)].reset_index(drop=True)
+    )
+    res = ident.identify_ski(bench, max_nfev=40)
+    assert res.at_noise and res.misfit <= ident.AT_NOISE
+    x = np.linspace(-0.45, 0.40, 86)  # between the glide zones
+    assert np.sqrt(np.mean((res.ski.stiffness(x) / true.stiffness(x) - 1) ** 2)) < 0.05
+    xz = np.linspace(-0.88, 0.83, 343)
+    d = res.ski.free_camber(xz) - true.free_camber(xz)
+    d -= np.polyval(np.polyfit(xz, d, 1), xz)
+    assert np.sqrt(np.mean(d**2)) < 10e-6
+    for m in (20.0, 40.0, 60.0, 80.0):
+        hi = solve_beam(res.ski, mass=m, load_position=-0.12).sample(xz)
+        ht = solve_beam(true, mass=m, load_position=-0.12).sample(xz)
+        assert np.sqrt(np.mean((hi - ht) ** 2)) < noise
