@@ -26,8 +26,7 @@ al. 2023, §3.1, eq. 1) against every profile of the bench, with the exact Jacob
    the fit, its residual sum of squares and the trace of its influence matrix; then one fit at
    the chosen λ, warm-started from that step (or from the fit if the step raises the misfit).
    Five full nonlinear fits, one per λ, cost 3-4 times more for the same choice.
-5. Globalisation, only for a fit that ends above the noise (misfit > :data:`AT_NOISE`): routes
-   in turn, each ending with stages 3-4, the lowest misfit kept, until one reaches the noise.
+5. Globalisation, only for a fit that ends above the noise (misfit > :data:`AT_NOISE`).
    Why the fit stalls (measured on the four-mass user benches of
    ``benchmarks/bench_identify.py`` that ended above the noise: classic of version 2 at 5 µm,
    seed 1, 2.05 σ and 10 µm, seeds 4 and 5, 1.31 / 1.24 σ; the stiff test ski at 5 µm, seed 1,
@@ -37,26 +36,23 @@ al. 2023, §3.1, eq. 1) against every profile of the bench, with the exact Jacob
    stiff: -248 mm, true -195 mm); the Gauss–Newton decrement is below the noise there (a local
    minimum of the exact-contact misfit: classic 5 µm with 600 evaluations allowed stopped at
    1.69 σ, and fits from the other start candidates, from random changes of log EI or by
-   alternating z0 / EI steps ended at 1.68 σ or above). The routes:
-
-   a. the smoothed contact from the stalled fit (:mod:`skisnow.ski._identify_smooth`,
-      ε = 3, 1, 0.3, 0.1 µm at λ = 1, then the exact contact): a smoothing method for the
-      complementarity (Chen & Mangasarian 1996), restarted at the stalled point instead of the
-      far start of stage 2. Within the width ε the reaction spreads over the nodes whose gap is
-      within ε of the stone, so the contact under the foot moves continuously instead of node
-      by node. It reached the noise on all four stalled benches (1.00-1.07 σ; EI 2.5-9.0 %
-      off; 1-3 s for four load cases); at λ = 0.1 or 10 instead of 1 also at the noise but
-      with EI up to 7.5 % off.
-   b. coarse-to-fine in the number of log-EI coefficients (multiscale inversion, Bunks et al.
-      1995): the whole fit (start to stage 4) with 10, then 7 coefficients, its log EI
-      projected onto the fine spline as a start for stages 3-4. Measured without route a
-      (the coarse identified ski as the ``initial`` of the fine fit) on the three benches of
-      issue 12: 10 coefficients 1.07 / 1.35 / 1.08 σ, 7 coefficients
-      1.36 / 1.06 / 1.16 σ (classic 5 µm, stiff 5 µm, classic 10 µm seed 5); the second route,
-      for a bench on which the first one does not reach the noise.
-
-   With it every user bench of the identification table reached the noise (30 benches: three
-   skis, 5 and 10 µm, seeds 1-5: 0.96-1.18 σ).
+   alternating z0 / EI steps ended at 1.68 σ or above). The remedy: the smoothed contact
+   (:mod:`skisnow.ski._identify_smooth`) restarted at the stalled fit, ε = 3, 1, 0.3, 0.1 µm at
+   λ = 1, then stages 3-4 again, the lower misfit kept: a smoothing method for the
+   complementarity (Chen & Mangasarian 1996) started near the solution instead of at the far
+   start of stage 2. Within the width ε the reaction spreads over the nodes whose gap is within
+   ε of the stone, so the contact under the foot moves continuously instead of node by node.
+   It reached the noise on all four stalled benches (1.00-1.07 σ; EI 2.5-9.0 % off; 1-3 s for
+   four load cases; at λ = 0.1 or 10 instead of 1 also at the noise but with EI up to 7.5 %
+   off), and every user bench of the identification table reached the noise with it (30
+   benches: three skis, 5 and 10 µm, seeds 1-5: 0.96-1.18 σ; 10 of them needed it). Measured
+   and not kept: coarse-to-fine in the number of log-EI coefficients (multiscale inversion,
+   Bunks et al. 1995: the whole fit with 10 or 7 coefficients, then the fine one from it) —
+   1.06-1.36 σ on the three stalled benches of issue 12, needed on none of the 30 after the
+   smoothed restart, and on a 39-case bench each route repeats the start (25-30 s). Where the
+   misfit above the noise is the model's (the skate's full sequence at 5 µm: 1.93 σ, and
+   1.57 σ started at the true ski: the z0 spline cannot follow its glide hump), the restart
+   does not lower it and costs 8 s.
 6. Bands: the Gauss–Newton (sandwich) covariance of the penalised estimate,
    (JᵀJ + P)⁻¹ JᵀJ (JᵀJ + P)⁻¹, propagated to log EI and to z0 in the rest-on-the-plane gauge.
 
@@ -293,13 +289,10 @@ def fit_bench(
     max_nfev: int,
     continuation: Sequence[float],
     say: Callable[[str], None],
-    coarse_stiffness: Sequence[int] = (10, 7),
-    globalise: bool = True,
 ) -> BenchFit:
     """Fit the bench model to all load cases: start, continuation, GCV over ``lambdas`` (or the
     given ``regularisation``), the globalisation of a fit above the noise; options as in
-    :func:`~skisnow.ski.identify_ski`, and ``coarse_stiffness`` (numbers of log-EI coefficients
-    of the coarse-to-fine routes) and ``globalise`` (False: no routes; the coarse fits)."""
+    :func:`~skisnow.ski.identify_ski`."""
     n_stiffness, n_camber = problem.n_e, problem.n_z
     # -- start: constant EI, z0 = the lightest profile (least squares on the z0 basis)
     if initial is not None:
@@ -480,45 +473,20 @@ def fit_bench(
     if initial is None and not physics:
         p = homotopy(p)
     sol, lam, records, best = exact(p)
-    if globalise and sol.misfit_rms > AT_NOISE:
-        # Globalisation of a fit that ends above the noise (module docstring): the routes in
-        # turn, the lowest misfit kept, until one reaches the noise.
-        def polish() -> NDArray[np.float64]:
-            p = sol.x
-            try:
-                for eps in _POLISH:
-                    p = fit(p, _POLISH_LAMBDA, eps=eps).x
-            except ConvergenceError as exc:
-                say(f"smoothed contact stopped ({exc}); on to the exact contact")
-            return p
-
-        def coarse_to_fine(n_coarse: int) -> NDArray[np.float64]:
-            coarse = _Problem(cases, nodes, n_coarse, n_camber, problem.sigma)
-            pc = fit_bench(
-                coarse, cases, nodes, initial=None, regularisation=regularisation,
-                lambdas=lambdas, max_nfev=max_nfev, continuation=continuation, say=say,
-                globalise=False,
-            ).solution.x  # fmt: skip
-            log_ei = np.log(coarse.ei_at(pc[:n_coarse], nodes))
-            theta_e = np.linalg.lstsq(_design(problem.t_e, nodes), log_ei, rcond=None)[0]
-            return np.concatenate([theta_e, pc[n_coarse:]])
-
-        routes: list[tuple[str, Callable[[], NDArray[np.float64]]]] = [
-            ("the smoothed contact from the fit", polish)
-        ]
-        if initial is None:
-            routes += [
-                (f"from {n} log-EI coefficients", lambda n=n: coarse_to_fine(n))
-                for n in coarse_stiffness
-                if n < n_stiffness
-            ]
-        for label, route in routes:
-            say(f"misfit {sol.misfit_rms:.3g} σ, above the noise: {label}")
-            trial = exact(route())
-            if trial[0].misfit_rms < sol.misfit_rms:
-                sol, lam, records, best = trial
-            if sol.misfit_rms <= AT_NOISE:
-                break
+    if sol.misfit_rms > AT_NOISE:
+        # Globalisation of a fit that ends above the noise (module docstring, stage 5): the
+        # smoothed contact restarted at the stalled fit, then the exact contact again; the
+        # lower misfit is kept.
+        p = sol.x
+        say(f"misfit {sol.misfit_rms:.3g} σ, above the noise: the smoothed contact from the fit")
+        try:
+            for eps in _POLISH:
+                p = fit(p, _POLISH_LAMBDA, eps=eps).x
+        except ConvergenceError as exc:
+            say(f"smoothed contact stopped ({exc}); on to the exact contact")
+        trial = exact(p)
+        if trial[0].misfit_rms < sol.misfit_rms:
+            sol, lam, records, best = trial
     final = _gcv(sol, problem.penalty_matrix(lam), lam)
     table = tuple(
         (rec[0], rec[1], rec[2], rec[3]) if k != best else final[:4]
@@ -578,7 +546,7 @@ _SHAPE_FRACTIONS = (1 / 3, 1 / 2, 1.0)
 _HOMOTOPY = (1e-5, 3e-6, 1e-6, 3e-7, 1e-7)
 #: Widths ε [m] of the smoothed contact that polishes a fit ending above the noise, in turn.
 _POLISH = (3e-6, 1e-6, 3e-7, 1e-7)
-#: λ of the smoothed polish (the exact fit after it chooses λ again by GCV).
+#: λ of the smoothed polish (the exact fit after it chooses λ again by GCV; measured 0.1, 1, 10).
 _POLISH_LAMBDA = 1.0
 
 
