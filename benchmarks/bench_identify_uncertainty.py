@@ -14,7 +14,8 @@ measured two ways for each ski × coverage × noise:
 * Gauss–Newton band (first seed): ``--samples`` parameter vectors drawn from the normal
   distribution of the fit's sandwich covariance (the one the identified ski's bands come from:
   noise only, linearised), each made into a ski and solved: the standard deviation [%] of each
-  quantity. ``|difference| / sd`` above 2 says the band does not cover the error.
+  quantity. ``|difference| / sd`` above 2 says the band does not cover the error (n/a: every
+  sample gave the same value, a zone length within one step of the contact grid).
 """
 
 from __future__ import annotations
@@ -114,7 +115,10 @@ def main() -> None:
                                    for q in QUANTITIES])  # fmt: skip
                     print("  GN sd  : " + " ".join(f"{v:6.2f}" for v in sd)
                           + f" | ({len(samples)} samples)")  # fmt: skip
-                    print("  |d|/sd : " + " ".join(f"{v:6.2f}" for v in np.abs(d) / sd))
+                    # sd 0: every sample gave the same length (the contact grid's step)
+                    ratio = [f"{abs(u) / v:6.2f}" if v > 0 else "   n/a"
+                             for u, v in zip(d, sd, strict=True)]  # fmt: skip
+                    print("  |d|/sd : " + " ".join(ratio))
             arr = np.array(rows)
             mean, sd = arr.mean(axis=0), arr.std(axis=0, ddof=1)
             print("  mean   : " + " ".join(f"{v:6.2f}" for v in mean))
