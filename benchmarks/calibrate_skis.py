@@ -525,6 +525,50 @@ def write_shipped(doc: dict, path: Path) -> Path:
             f"{EI_STEP_MAX:g}x; chosen, not sourced): peak {doc['ei_n_m2'][peak]:.0f} N m² at "
             f"{doc['ei_knots_m'][peak] * 1e3:+.0f} mm, largest neighbour step {step:.1f}x."
         )
+        wrong = [
+            float(np.exp(abs(d)))
+            for i, d in enumerate(np.diff(log_ei))
+            if (i < peak and d < 0) or (i >= peak and d > 0)
+        ]
+        if wrong:
+            text += (
+                f" The shape limit is not met exactly: {len(wrong)} wrong-way step(s), largest "
+                f"{(max(wrong) - 1) * 100:.1f} %."
+            )
+    k_range = doc.get("k_range_n_per_mm")
+    if kind == "skate" and k_range:
+        lo, hi = k_range
+        text += (
+            f" Breitschädel stiffness k limited to {lo:.0f}-{hi:.0f} N/mm: Breitschädel et al. "
+            "(2010) measured the skating skis of the Norwegian national teams at team means "
+            "225-251 N/mm, the skis spreading ±53-87 N/mm (SD) about them"
+            + (
+                "; 95-420 N/mm is mean ± 2 SD over the three teams, the range of the skis "
+                "themselves."
+                if (lo, hi) == (95.0, 420.0)
+                else "."
+            )
+        )
+        if pr["k_n_per_mm"] > hi - 0.01 * (hi - lo):
+            text += (
+                f" BINDING: k sits at its upper limit ({pr['k_n_per_mm']:.0f} N/mm); the "
+                "captions alone pull it far higher (a caption-only fit: k about 2700 N/mm, "
+                "1.5 mm free camber), so this plausible ski misses most caption numbers."
+            )
+    if doc.get("findings"):
+        topo = doc["topology"]
+        text += (
+            " Also fitted (topology residuals, weight "
+            f"{float(doc.get('topology_weight', 0.0)):g}): the paper's qualitative findings "
+            "on 100 MPa at -120 mm (Fig. 5) and on the bench (Fig. 8): rear contact growing "
+            f"30->60 kg by >= {float(doc.get('rear_growth_min', 1.4)):g}x (got "
+            f"{topo['rear_growth_30_60']:.2f}x; paper 1.97x), front one patch at 30 kg and two "
+            f"at 60 kg, front mean pressure rising by >= "
+            f"{float(doc.get('front_pressure_growth_min', 1.5)):g}x (got "
+            f"{topo['front_pressure_growth_30_60']:.2f}x; paper 2.1x), the rear load share "
+            f"changing by <= 0.04 (got {topo['rear_share_change_30_60']:.3f}; paper 0.04), the "
+            "bench front one patch at 30 kg and two at 65 kg."
+        )
     text += (
         " FITTED numbers: the captions (lengths, mean pressures, load shares, patch counts);"
         " the Figure 8-9 findings are predictions."
@@ -559,6 +603,9 @@ def write_shipped(doc: dict, path: Path) -> Path:
             ("caption_misfit", round(float(doc["caption_misfit"]), 3)),
             ("caption_zones_within_tolerance", f"{n_ok}/{len(rows)}"),
             ("k_n_per_mm", round(float(pr["k_n_per_mm"]), 1)),
+            ("k_range_n_per_mm", json.dumps(doc.get("k_range_n_per_mm"))),
+            ("findings_residuals", bool(doc.get("findings", False))),
+            ("front_pressure_growth_min", float(doc.get("front_pressure_growth_min", 0.0))),
             ("ei_knots_n_m2", json.dumps(doc["ei_n_m2"])),
             ("camber_knots_mm", json.dumps(doc["camber_mm"])),
             ("boot_plate", "chosen: a boot from the balance point 300 mm back"),

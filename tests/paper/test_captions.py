@@ -47,12 +47,12 @@ def test_caption_cases_balance_force_and_moment() -> None:
 #: ways: a listed miss that starts to pass, or an unlisted one that fails, is a failure.
 #: Measured with the shipped skis: the classic of version 2 (spline fit of
 #: benchmarks/calibrate_skis.py, benchmarks/calibration/calibration_classic_v3.json) and the
-#: skate of version 1 (its spline fits are records, not shipped; README).
+#: skate of version 2 (benchmarks/calibration/calibration_skate_v5.json: Breitschädel's k at its
+#: upper limit, 420 N/mm, and the paper's Fig. 5/8 findings held; the captions pull k far
+#: higher, so only the rear zone on the stone is within the tolerances; README).
 KNOWN_MISSES: set[tuple[str, str, str]] = {
     ("Fig. 4 skate 30 kg -120 mm stone", "front", "length"),
     ("Fig. 4 skate 30 kg -120 mm stone", "front", "pressure"),
-    ("Fig. 4 skate 30 kg -120 mm stone", "rear", "length"),
-    ("Fig. 4 skate 30 kg -120 mm stone", "rear", "pressure"),
     ("Fig. 5 skate 30 kg -120 mm 100 MPa", "front", "length"),
     ("Fig. 5 skate 30 kg -120 mm 100 MPa", "front", "pressure"),
     ("Fig. 5 skate 30 kg -120 mm 100 MPa", "front", "share"),
