@@ -149,15 +149,17 @@ def test_warm_start_changes_only_the_iterations() -> None:
 def test_mesh_refinement_converges() -> None:
     # Contact acts at nodes, so the contact points move in steps of the element size: the error
     # of h(0) against a 1600-element solution must be small at 400 elements (below 5 µm, half the
-    # bench's 0.01 mm resolution) and smaller than at 50 elements.
+    # bench's 0.01 mm resolution), and the largest error over the whole profile smaller than at
+    # 50 elements. (Not h(0) alone: it does not fall monotonically — on the skate of version 2
+    # it is 2.4 µm at 50 elements by chance, 12 µm at 100, 3.2 µm at 400; the profile's largest
+    # error 13.8, 12.6 and 4.8 µm.)
     ski = get_ski("skate")
-    ref = solve_beam(ski, mass=32.5, load_position=-0.08, n_elements=1600).sample(0.0)
-    err = {
-        n: abs(solve_beam(ski, mass=32.5, load_position=-0.08, n_elements=n).sample(0.0) - ref)
-        for n in (50, 400)
-    }
+    x = np.linspace(ski.x_tail, ski.x_tip, 2001)
+    ref = solve_beam(ski, mass=32.5, load_position=-0.08, n_elements=1600)
+    sol = {n: solve_beam(ski, mass=32.5, load_position=-0.08, n_elements=n) for n in (50, 400)}
+    err = {n: np.max(np.abs(s.sample(x) - ref.sample(x))) for n, s in sol.items()}
     assert err[400] < err[50]
-    assert err[400] < 5e-6
+    assert abs(sol[400].sample(0.0) - ref.sample(0.0)) < 5e-6
 
 
 def test_mirror_invariance() -> None:

@@ -202,3 +202,12 @@ def test_a_bench_file_enters_through_identification(tmp_path: Path) -> None:
     assert ident["origin"] == "bench file (identified)" and ident["profile_route"] == "beam"
     for key in ("full_total_length_mm", "full_total_mean_pressure_kpa", "half_total_length_mm"):
         assert ident[key] == pytest.approx(true[key], rel=0.05)
+
+
+def test_an_infinite_value_is_ranked_not_dropped() -> None:
+    # a closing load of inf (the pocket never closes on the bench) is the stiffest, the best of
+    # "higher"; only NaN (no answer) goes last
+    crit = CRITERIA["closing-load"]
+    assert list(crit.order([101.3, np.inf, np.nan])) == [1, 0, 2]
+    low = dataclasses.replace(crit, better="lower")
+    assert list(low.order([np.inf, np.nan, 101.3])) == [2, 0, 1]

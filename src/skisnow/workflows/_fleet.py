@@ -88,10 +88,14 @@ class Criterion:
     snow_dependent: bool = True
 
     def order(self, values: Sequence[float]) -> np.ndarray:
-        """Indices from best to worst (NaN last; stable for ties)."""
+        """Indices from best to worst (NaN last; stable for ties).
+
+        An infinite value is a real answer, not a missing one (a closing load of ``inf``: the
+        pocket never closes, the stiffest), ranked at its end of the order.
+        """
         v = np.asarray(values, dtype=float)
         key = v if self.better == "lower" else -v
-        key = np.where(np.isfinite(key), key, np.inf)
+        key = np.where(np.isnan(key), np.inf, key)
         return np.argsort(key, kind="stable")
 
 
