@@ -276,7 +276,8 @@ def identify_ski(
         the homotopy on the smoothed contact (module docstring).
     max_nfev
         Residual evaluations allowed to each stage of the fit (each homotopy stage, the fit at
-        the middle of the λ grid and the fit at the chosen λ).
+        the middle of the λ grid, the fit at the chosen λ, and each stage of the smoothed
+        restart of a fit that ends above the noise).
     continuation
         Fractions of the bench's masses fitted first, in turn (lightest first, on the smoothed
         contact of width 10 µm; default start only).
