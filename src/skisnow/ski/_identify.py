@@ -67,38 +67,43 @@ unilateral contact with the rigid stone, loaded by m·g through the boot plate a
 
 Accuracy (``benchmarks/bench_identify.py --ski classic skate stiff --coverage user full
 --noise-um 5 10 --max-nfev 40``, seed 1, and ``--seed 1 2 3 4 5`` for the spread; the README's
-identification table has the numbers, measured on bc1a642; the classic is the shipped classic of
-version 2, bcb39eb: EI 57-6200 N m² with a stiff spot behind the foot, tip rising 31 mm). From
-the default start every four-mass bench reaches the noise (30 benches: three skis, 5 and 10 µm,
-seeds 1-5: 0.96-1.18 σ; 10 needed the smoothed restart of the globalisation), and every full
-sequence but the skate's at 5 µm (1.93 σ; 1.57 σ from the true ski: the z0 resolution below).
-Not every seed: the classic's full sequence at 5 µm, seed 2, fails from its start (EI shape from
-the load differences at 47 σ, the fit stalls at 10.5 σ, the smoothed contact of the 10 kg case
-does not converge for the restart: 9.7 σ, EI 22.5 % off; the other start candidates, the
-homotopy from the constant start and 150 evaluations per stage measured 3.0-10.5 σ). Targets (EI
-5 % rms, z0 10 µm, held-out within the noise, contact within 5 %, full sequence < 60 s): full
-sequences EI 0.8-4.2 %, z0 2.2-10.6 µm (classic at 10 µm: missed), held-out 1.7-5.6 µm (skate at
-5 µm: missed), 22-48 s; four-mass benches at seed 1 EI 0.8-2.8 % (skate), 2.5 / 5.6 % (stiff, 5
-/ 10 µm), 9.0 / 8.9 % (classic: missed; 3.8-8.9 % over seeds at 10 µm), z0 1.5-61 µm (missed by
-the classic, and at 10 µm by all three), held-out 2.8-14.2 µm (classic at 10 µm missed: between
-the bench's masses its contact rolls over glide-zone stations no bench load presses; at 50 kg
-the identified classic was 54-57 µm off for seeds 1 and 5, at the bench's own masses 2-4 µm; the
-skate at 5 µm, 5.6 µm, missed too); contact results 0.5-5.3 % except the skate (8.9 % user, 10.1
-% full: missed). Over noise seeds (``benchmarks/bench_identify_uncertainty.py``) the four-mass
-classic's contact misses are its noise (mean difference per quantity ≤ 2.6 %, seeds' standard
-deviation 2.2-3.7 %), the skate's are systematic (front length at 60 kg +8.35 ± 0.69 %). Contact
-results on snow depend on z0 within a few µm over the few centimetres of a contact zone; the z0
-spline (``n_camber`` = 100 coefficients, ≈ 20 mm knots) cannot follow a curvature jump there
-(the skate's glide hump): with noise-free data the skate's contact lengths are 7.6 % off at 100
-coefficients and 2.5 % at 200, but with 10 µm noise more coefficients make the fit worse
-(measured at 150 and 200: a z0 smoothing chosen from the data would be needed). Diagnosis
-(``benchmarks/bench_identify_contact.py``, measured on the skis shipped at commit 0320ddc,
-classic of version 1): the misses are in the zone lengths (the mean pressures follow them),
-mostly from z0: the true ski carrying the identified z0 misses by as much as the identified ski,
-the true ski carrying the identified EI by 0.6-2.3 %; a Gaussian bump of 1 µm (sd 20 mm) on the
-true z0 changes the contact results by 1.9-2.5 %, of 3 µm by 3.8-6.5 %. Refined z0 knots (6 mm
-in the bench's contact windows) with a curvature penalty chosen by GCV removed the resolution
-floor without noise but with 10 µm noise made the user benches worse, so they are not used.
+identification table has the numbers, measured on b8dbf60; the classic is the shipped classic of
+version 2, bcb39eb: EI 57-6200 N m² with a stiff spot behind the foot, tip rising 31 mm; the
+skate the shipped skate of version 2, 319a4fa). From the default start every four-mass bench
+reaches the noise (30 benches: the classic, the skate of version 1 and the stiff ski, 5 and 10
+µm, seeds 1-5: 0.96-1.18 σ, 10 needed the smoothed restart of the globalisation; the skate of
+version 2 at 10 µm, seeds 1-5: 0.99-1.10 σ), and every full sequence at seed 1 but the skate's
+at 5 µm (3.46 σ; 1.35 σ from the true ski). Not every seed: the classic's full sequence at 5 µm,
+seed 2, fails from its start (EI shape from the load differences at 47 σ, the fit stalls at 10.5
+σ, the smoothed contact of the 10 kg case does not converge for the restart: 9.7 σ, EI 22.5 %
+off; the other start candidates, the homotopy from the constant start and 150 evaluations per
+stage measured 3.0-10.5 σ), at 10 µm, seed 4, it ends at 1.54 σ. Targets (EI 5 % rms, z0 10 µm,
+held-out within the noise, contact within 5 %, full sequence < 60 s) at seed 1: full sequences
+EI 0.8-4.7 % (skate at 5 µm: 11.3 %), z0 2.5-10.6 µm (classic at 10 µm and skate at 5 µm, 18.5
+µm: missed), held-out 1.7-11.6 µm (skate at 5 µm: missed), contact 0.9-6.7 % (skate: 5.05 / 6.71
+%, missed), 20.8-53.5 s (61.7-62.5 s on two other seeds with the other core busy); four-mass
+benches EI 2.5-9.0 % (classic 9.0 / 8.9 %, skate at 10 µm 6.8 %, stiff at 10 µm 5.6 %: missed;
+the classic 3.2-8.9 % over seeds at 10 µm), z0 2.8-61 µm (missed by all but the stiff ski at 5
+µm), held-out 2.8-14.2 µm (classic at 10 µm missed: between the bench's masses its contact rolls
+over glide-zone stations no bench load presses; at 50 kg the identified classic was 54-57 µm off
+for seeds 1 and 5, at the bench's own masses 2-4 µm; the skate at 5 µm, 6.4 µm, missed too),
+contact 2.9-5.3 % (classic at 10 µm missed; 0.9-7.1 % over seeds). Over noise seeds
+(``benchmarks/bench_identify_uncertainty.py``) the four-mass classic's contact misses are its
+noise (mean difference per quantity ≤ 2.6 %, seeds' standard deviation 2.0-3.9 %); the skate of
+version 1 missed systematically (front length at 60 kg +8.35 ± 0.69 % from four masses), the z0
+resolution at its glide hump: contact results on snow depend on z0 within a few µm over the few
+centimetres of a contact zone; the z0 spline (``n_camber`` = 100 coefficients, ≈ 20 mm knots)
+cannot follow a curvature jump there (the skate's glide hump): with noise-free data the skate's
+contact lengths are 7.6 % off at 100 coefficients and 2.5 % at 200, but with 10 µm noise more
+coefficients make the fit worse (measured at 150 and 200: a z0 smoothing chosen from the data
+would be needed). Diagnosis (``benchmarks/bench_identify_contact.py``, measured on the skis
+shipped at commit 0320ddc, classic of version 1): the misses are in the zone lengths (the mean
+pressures follow them), mostly from z0: the true ski carrying the identified z0 misses by as
+much as the identified ski, the true ski carrying the identified EI by 0.6-2.3 %; a Gaussian
+bump of 1 µm (sd 20 mm) on the true z0 changes the contact results by 1.9-2.5 %, of 3 µm by
+3.8-6.5 %. Refined z0 knots (6 mm in the bench's contact windows) with a curvature penalty
+chosen by GCV removed the resolution floor without noise but with 10 µm noise made the user
+benches worse, so they are not used.
 
 This module holds the public entry point :func:`identify_ski` (input checks, binning of the
 bench, the identified :class:`~skisnow.ski.Ski` with its provenance) and its result
