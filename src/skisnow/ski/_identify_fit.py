@@ -233,42 +233,47 @@ def _stiffness_from_differences(
     others = [k for k in range(len(cases)) if k != k1 and cases[k].mass <= m_cut]
     if not others:
         return None
-    kern_parts, rig_parts, rhs, info = [], [], [], np.zeros(xe.size)
-    for j, k in enumerate(others):
+    # The rigid terms of each case are eliminated case by case (variable projection: its
+    # kernel rows and data projected off the span of 1 and x at its bins); the projected
+    # problem is then carried by its normal matrices alone, G = KᵀK and c = Kᵀd over the
+    # elements, so every Gauss–Newton step costs O(n_el²) instead of O(n_data n_el).
+    n_el = xe.size
+    gram, cross, d0, info = np.zeros((n_el, n_el)), np.zeros(n_el), 0.0, np.zeros(n_el)
+    for k in others:
         c = cases[k]
         inside = (c.x > c1.x.min()) & (c.x < c1.x.max())
         x, w = c.x[inside], c.w[inside] / problem.sigma
         dm = moment(k) - m1
         info += np.abs(dm)
-        kern_parts.append(w[:, None] * np.maximum(x[:, None] - xe[None, :], 0.0) * (dm * le))
-        rig = np.zeros((x.size, 2 * len(others)))
-        rig[:, 2 * j], rig[:, 2 * j + 1] = 1.0, x
-        rig_parts.append(w[:, None] * rig)
-        rhs.append(w * (c.h[inside] - np.interp(x, c1.x, c1.h)))
-    kern, rig, data = np.concatenate(kern_parts), np.concatenate(rig_parts), np.concatenate(rhs)
-    q_rig, _ = np.linalg.qr(rig)
+        kern = w[:, None] * np.maximum(x[:, None] - xe[None, :], 0.0) * (dm * le)
+        data = w * (c.h[inside] - np.interp(x, c1.x, c1.h))
+        q_rig, _ = np.linalg.qr(np.stack([w, w * x], axis=1))
+        kern -= q_rig @ (q_rig.T @ kern)  # the best rigid terms of this case for any EI
+        data -= q_rig @ (q_rig.T @ data)
+        gram += kern.T @ kern
+        cross += kern.T @ data
+        d0 += float(data @ data)
     pen = np.sqrt(lam) * problem.d2_e
 
-    def residual(th: NDArray[np.float64]) -> tuple[NDArray[np.float64], float]:
-        r = kern @ np.exp(-be @ th) - data
-        r -= q_rig @ (q_rig.T @ r)  # the best rigid terms for this EI
-        return r, float(r @ r + np.sum((pen @ th) ** 2))
+    def cost_of(th: NDArray[np.float64]) -> float:
+        wv = np.exp(-be @ th)
+        return float(wv @ (gram @ wv - 2.0 * cross) + d0 + np.sum((pen @ th) ** 2))
 
     theta = problem.split(p)[0].copy()
-    r, cost = residual(theta)
+    cost = cost_of(theta)
     mu = 1e-3
     for _ in range(30):
-        jt = -(kern * np.exp(-be @ theta)[None, :]) @ be
-        jt -= q_rig @ (q_rig.T @ jt)
-        g = jt.T @ r + pen.T @ (pen @ theta)
-        h = jt.T @ jt + pen.T @ pen
+        wv = np.exp(-be @ theta)
+        bw = be * wv[:, None]  # (n_el, nE): d(kernel weights)/d(-θ)
+        g = -bw.T @ (gram @ wv - cross) + pen.T @ (pen @ theta)
+        h = bw.T @ gram @ bw + pen.T @ pen
         improved = False
         while mu < 1e8:
             step = np.linalg.solve(h + mu * np.diag(np.diag(h)), -g)
             th_new = np.clip(theta + step, -10.0, 25.0)
-            r_new, cost_new = residual(th_new)
+            cost_new = cost_of(th_new)
             if cost_new < cost:
-                theta, r, cost, mu, improved = th_new, r_new, cost_new, max(mu / 3, 1e-6), True
+                theta, cost, mu, improved = th_new, cost_new, max(mu / 3, 1e-6), True
                 break
             mu *= 4
         if not improved or float(-g @ step) < 1e-3:
