@@ -201,6 +201,64 @@ def test_candidate_iteration_gives_the_whole_grid_answer(
     assert np.abs(a.pressure - b.pressure).max() <= 1e-6 * b.pressure.max()
 
 
+def _synthetic_ski(n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """A 2 m ski built here (not a shipped one): a camber pocket with a waviness, EI varying
+    1.6x along the ski."""
+    x = np.linspace(-1.0, 1.0, n)
+    z0 = 2e-3 * (1 - x**2) ** 2 + 2e-4 * np.sin(7 * x)
+    ei = 40.0 + 60.0 * np.cos(1.4 * x) ** 2
+    return x, z0, ei
+
+
+@pytest.mark.parametrize("dense_limit", [None, 0])
+def test_active_set_path_gives_the_mprgp_answer(
+    dense_limit: int | None, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # the primal–dual active-set steps on nested grids (the default at >= 1024 stations) and,
+    # with the dense limit at 0, MPRGP started from their coarse solution, against the
+    # whole-grid MPRGP (candidates=False): the MPRGP answers approach the new one as MPRGP's
+    # tolerance shrinks, and the new one meets the KKT conditions to round-off
+    import skisnow.contact._flexible_pdas as pdas
+
+    if dense_limit is not None:
+        monkeypatch.setattr(pdas, "_PDAS_MAX_CELLS", dense_limit)
+    x, z0, ei = _synthetic_ski(2048)
+    load = 600.0
+    kw = dict(load=load, load_position=-0.05, modulus=effective_modulus(snow(200e6)), width=0.045)
+    new = solve_flexible(x, z0, ei, tol=1e-12, **kw)
+    c = new.contact
+    assert new.converged
+    assert ("active set" in c.message) == (dense_limit is None)
+    assert c.total_force == pytest.approx(load, rel=1e-9)
+    assert abs(c.total_moment) <= 1e-9 * load * 2.0
+    assert np.all(c.pressure >= 0)
+    # the stopping rule of solve_flexible: 1e-12 of the camber range plus the displacement
+    rule = 1e-12 * (np.ptp(c.height) + float(c.displacement.max()))
+    assert c.gap.min() >= -rule
+    assert np.abs(c.gap[c.contact]).max() <= rule
+    assert new.complementarity <= 1e-10
+    dev = []
+    for tol in (1e-10, 1e-12):
+        old = solve_flexible(x, z0, ei, candidates=False, tol=tol, **kw).contact
+        assert "active set" not in old.message
+        dev.append(np.abs(c.pressure - old.pressure).max() / old.pressure.max())
+    assert np.array_equal(c.contact, old.contact)
+    if dense_limit is None:  # exact to round-off: MPRGP's error shrinks with its tolerance
+        assert dev[1] < 0.1 * dev[0]
+    assert dev[1] <= 1e-6
+
+
+def test_beam_block_matches_the_operator() -> None:
+    x = np.linspace(-1.0, 1.0, 161)
+    op = cantilever_compliance(x, lambda xx: 40 + 20 * np.cos(2 * xx), load_position=0.137)
+    k = op(np.eye(x.size))
+    cells = np.sort(np.random.default_rng(2).choice(x.size, 60, replace=False))
+    scale = np.abs(k).max()
+    assert np.abs(op.block(cells) - k[np.ix_(cells, cells)]).max() <= 1e-12 * scale
+    low = op.block(cells, lower_only=True)
+    assert np.abs(np.tril(low) - np.tril(k[np.ix_(cells, cells)])).max() <= 1e-12 * scale
+
+
 def test_refinement_converges() -> None:
     ski = get_ski("classic")
     e = effective_modulus(snow(20e6))

@@ -97,10 +97,13 @@ class CantileverCompliance:
                 out[..., half.index] = half.apply(f[..., half.index])
         return out
 
-    def block(self, cells: np.ndarray) -> np.ndarray:
+    def block(self, cells: np.ndarray, *, lower_only: bool = False) -> np.ndarray:
         """The dense block K_beam[cells, cells] [m/N] (rows and columns of the stations
-        ``cells``): G_ij = Σ_{t_k < min(d_i, d_j)} c_k (d_i − t_k)(d_j − t_k), from three
-        cumulative sums; zero between the two halves."""
+        ``cells``, increasing): G_ij = Σ_{t_k < min(d_i, d_j)} c_k (d_i − t_k)(d_j − t_k), zero
+        between the two halves. With i the station nearer the clamp, G_ij = u_i d_j + v_i
+        (u_i = d_i S0_i − S1_i, v_i = S2_i − d_i S1_i, S the cumulative sums of c, c t, c t² up
+        to d_i): one outer product per half, mirrored from its triangle (``lower_only``: the
+        lower triangle only is right, as a Cholesky factorisation reads it)."""
         cells = np.asarray(cells, dtype=np.intp)
         out = np.zeros((cells.size, cells.size))
         for half in (self.rear, self.front):
@@ -112,16 +115,25 @@ class CantileverCompliance:
             sel = np.flatnonzero(pos >= 0)
             if not sel.size:
                 continue
-            ps = pos[sel]
+            # the stations of a half are contiguous in x, ordered away from the clamp: toward
+            # the tip (increasing x) in front, toward the tail in the rear
+            front = half is self.front
+            ordered = sel if front else sel[::-1]  # nearest the clamp first
+            ps = pos[ordered]
             d = half.d[ps]
-            s0 = np.cumsum(half.c)[:-1]
-            s1 = np.cumsum(half.c * half.t)[:-1]
-            s2 = np.cumsum(half.c * half.t * half.t)[:-1]
-            mn = np.minimum.outer(ps, ps)
-            g = np.multiply.outer(d, d) * s0[mn]
-            g -= np.add.outer(d, d) * s1[mn]
-            g += s2[mn]
-            out[np.ix_(sel, sel)] = g
+            s0 = np.cumsum(half.c)[ps]
+            s1 = np.cumsum(half.c * half.t)[ps]
+            s2 = np.cumsum(half.c * half.t * half.t)[ps]
+            g = np.multiply.outer(d * s0 - s1, d)
+            g += (s2 - d * s1)[:, None]  # right where j is at or beyond i: the upper triangle
+            if not front:
+                g = g[::-1, ::-1]  # in increasing x: the lower triangle is right
+            if not lower_only:
+                g = np.triu(g) + np.triu(g, 1).T if front else np.tril(g) + np.tril(g, -1).T
+            elif front:
+                g = g.T
+            lo, hi = int(sel[0]), int(sel[-1]) + 1
+            out[lo:hi, lo:hi] = g
         return out
 
     def boot_deflection(self, force: float, boot_length: float) -> np.ndarray:
