@@ -210,14 +210,15 @@ def _synthetic_ski(n: int) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     return x, z0, ei
 
 
-@pytest.mark.parametrize("dense_limit", [None, 0])
+@pytest.mark.parametrize(("dense_limit", "warm"), [(None, False), (0, False), (None, True)])
 def test_active_set_path_gives_the_mprgp_answer(
-    dense_limit: int | None, monkeypatch: pytest.MonkeyPatch
+    dense_limit: int | None, warm: bool, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     # the primal–dual active-set steps on nested grids (the default at >= 1024 stations) and,
     # with the dense limit at 0, MPRGP started from their coarse solution, against the
     # whole-grid MPRGP (candidates=False): the MPRGP answers approach the new one as MPRGP's
-    # tolerance shrinks, and the new one meets the KKT conditions to round-off
+    # tolerance shrinks, and the new one meets the KKT conditions to round-off; ``warm``: the
+    # steps start from the contact set of a lighter skier's pressure (as in a load cycle)
     import skisnow.contact._flexible_pdas as pdas
 
     if dense_limit is not None:
@@ -225,7 +226,10 @@ def test_active_set_path_gives_the_mprgp_answer(
     x, z0, ei = _synthetic_ski(2048)
     load = 600.0
     kw = dict(load=load, load_position=-0.05, modulus=effective_modulus(snow(200e6)), width=0.045)
-    new = solve_flexible(x, z0, ei, tol=1e-12, **kw)
+    start = None
+    if warm:
+        start = solve_flexible(x, z0, ei, **{**kw, "load": 0.8 * load}).contact.pressure
+    new = solve_flexible(x, z0, ei, tol=1e-12, initial_pressure=start, **kw)
     c = new.contact
     assert new.converged
     assert ("active set" in c.message) == (dense_limit is None)

@@ -339,7 +339,16 @@ def solve_flexible(
         apply_full = lambda v: op(v.reshape(shape)).ravel()  # noqa: E731
         precond_full = lambda v: inverse(v.reshape(shape)).ravel()  # noqa: E731
         pre = None
-        if initial_pressure is None:
+        if initial_pressure is not None:
+            # a warm start's contact set starts the active-set steps on this grid; if they do
+            # not converge (a set too large for a dense Cholesky, a cycle), the nested grids
+            # below (measured on the flexible classic cycle: cheaper than MPRGP from the warm
+            # start, 0.76 s against 1.59 s for 100 frames)
+            result, _ = multilevel_active_set(
+                xs, h_line, np.asarray(ei), op=op, load=load, load_position=xm,
+                modulus=modulus, width=width, tol=float(tol), workers=workers, start=p0,
+            )  # fmt: skip
+        if result is None:
             # the contact set by primal–dual active-set steps on nested grids (Hintermüller et
             # al. 2002); when the finest grid's set is too large for a dense Cholesky or the
             # steps cycle, MPRGP goes on from the coarse solution (already shrunk: no warm-up)
