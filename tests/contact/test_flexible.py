@@ -217,8 +217,8 @@ def test_active_set_path_gives_the_mprgp_answer(
     # the primal–dual active-set steps on nested grids (the default at >= 1024 stations) and,
     # with the dense limit at 0, MPRGP started from their coarse solution, against the
     # whole-grid MPRGP (candidates=False): the MPRGP answers approach the new one as MPRGP's
-    # tolerance shrinks, and the new one meets the KKT conditions to round-off; ``warm``: the
-    # steps start from the contact set of a lighter skier's pressure (as in a load cycle)
+    # tolerance shrinks, and the new one meets the KKT conditions to round-off; ``warm``: with a
+    # lighter skier's pressure as the initial pressure (as in a load cycle)
     import skisnow.contact._flexible_pdas as pdas
 
     if dense_limit is not None:

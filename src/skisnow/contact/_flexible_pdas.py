@@ -134,7 +134,6 @@ def multilevel_active_set(
     width: float,
     tol: float,
     workers: int | None = None,
-    start: np.ndarray | None = None,
 ) -> tuple[_Result | None, np.ndarray | None]:
     """The flexible ski on a strip grid by active-set steps on nested grids.
 
@@ -157,9 +156,6 @@ def multilevel_active_set(
         The stopping rule of :func:`~skisnow.contact._mprgp.active_set_cg`.
     workers
         FFT threads of the coarse operators.
-    start
-        A feasible warm start [Pa] (e.g. the previous frame's pressure): then its contact set
-        starts the steps on ``x`` directly, without the coarse grids.
 
     Returns
     -------
@@ -170,22 +166,13 @@ def multilevel_active_set(
         for MPRGP; None if no grid was solved).
     """
     n = x.size
-    if start is not None:  # a warm start: its set starts the steps on the finest grid only
-        xi = x - load_position
-        g = op(start) + h
-        a, b = plane_fit(g, xi, start > 0.0)
-        act = start - (g - a - b * xi) / op.snow.self_influence > 0.0
-        _, _, result = _active_set_steps(
-            op, h, xi, act, load / op.cell_area, tol=tol, max_cells=_PDAS_MAX_CELLS
-        )
-        return result, None
     sizes = [n]
     while sizes[0] % _COARSEN == 0 and sizes[0] // _COARSEN >= _COARSEST:
         sizes.insert(0, sizes[0] // _COARSEN)
     if len(sizes) == 1:
         return None, None
     act: np.ndarray | None = None
-    coarse: np.ndarray | None = None
+    start: np.ndarray | None = None
     for m in sizes:
         f = n // m
         if m == n:
@@ -214,5 +201,5 @@ def multilevel_active_set(
         if result is not None and m == n:
             return result, None
         if p is not None:
-            coarse = np.repeat(p, n // m)
-    return None, coarse
+            start = np.repeat(p, n // m)
+    return None, start
