@@ -32,7 +32,8 @@ unilateral contact with the rigid stone, loaded by m·g through the boot plate a
   EI(x) from the differences between load cases, in which z0 cancels: with the contact
   reactions of the model the bending moments are statics, h_k − h_1 = ∫ (x − s)₊ ΔM_k / EI ds
   + a line, fitted in log EI; the start is re-made with it (z0 unloaded at the new EI, the
-  level of log EI on a grid) and the contacts re-solved while the misfit falls, in sequences
+  level of log EI by a walk from the shape's own) and the contacts re-solved while the misfit
+  falls, in sequences
   on the lightest third, half and all of the masses; the best start by misfit.
 * Homotopy in the contact (only when the EI shape does not improve on the constant start: from
   a good start it pulls the fit away, at the largest λ of the grid and on the smoothed stone):
@@ -67,21 +68,19 @@ unilateral contact with the rigid stone, loaded by m·g through the boot plate a
 
 Accuracy (``benchmarks/bench_identify.py --ski classic skate stiff --coverage user full
 --noise-um 5 10 --max-nfev 40``, seed 1, and ``--seed 1 2 3 4 5`` for the spread; the README's
-identification table has the numbers, measured on b8dbf60; the classic is the shipped classic of
+identification table has the numbers, measured on 6db6490; the classic is the shipped classic of
 version 2, bcb39eb: EI 57-6200 N m² with a stiff spot behind the foot, tip rising 31 mm; the
 skate the shipped skate of version 2, 319a4fa). From the default start every four-mass bench
 reaches the noise (30 benches: the classic, the skate of version 1 and the stiff ski, 5 and 10
 µm, seeds 1-5: 0.96-1.18 σ, 10 needed the smoothed restart of the globalisation; the skate of
 version 2 at 10 µm, seeds 1-5: 0.99-1.10 σ), and every full sequence at seed 1 but the skate's
-at 5 µm (3.46 σ; 1.35 σ from the true ski). Not every seed: the classic's full sequence at 5 µm,
-seed 2, fails from its start (EI shape from the load differences at 47 σ, the fit stalls at 10.5
-σ, the smoothed contact of the 10 kg case does not converge for the restart: 9.7 σ, EI 22.5 %
-off; the other start candidates, the homotopy from the constant start and 150 evaluations per
-stage measured 3.0-10.5 σ), at 10 µm, seed 4, it ends at 1.54 σ. Targets (EI 5 % rms, z0 10 µm,
-held-out within the noise, contact within 5 %, full sequence < 60 s) at seed 1: full sequences
-EI 0.8-4.7 % (skate at 5 µm: 11.3 %), z0 2.5-10.6 µm (classic at 10 µm and skate at 5 µm, 18.5
-µm: missed), held-out 1.7-11.6 µm (skate at 5 µm: missed), contact 0.9-6.7 % (skate: 5.05 / 6.71
-%, missed), 20.8-53.5 s (61.7-62.5 s on two other seeds with the other core busy); four-mass
+at 5 µm (1.63 σ; 1.35 σ from the true ski), and the classic's full sequence at 5 and 10 µm,
+seeds 1-4 (1.04-1.18 σ; at 5 µm, seed 2 and 10 µm, seed 4 the first fit stalls at 9.9 / 1.6 σ
+and the smoothed restart brings it to the noise). Targets (EI 5 % rms, z0 10 µm, held-out within
+the noise, contact within 5 %, full sequence < 60 s) at seed 1: full sequences EI 0.8-4.7 %
+(skate at 5 µm: 5.1 %), z0 2.5-10.6 µm (classic at 10 µm: missed narrowly), held-out 1.7-7.5 µm
+(skate at 5 µm, 5.9 µm: missed), contact 0.5-6.7 % (skate: 6.70 / 6.71 %, missed), 9.4-25.8 s
+(the classic's seeds 1-4 included, the other core busy); four-mass
 benches EI 2.5-9.0 % (classic 9.0 / 8.9 %, skate at 10 µm 6.8 %, stiff at 10 µm 5.6 %: missed;
 the classic 3.2-8.9 % over seeds at 10 µm), z0 2.8-61 µm (missed by all but the stiff ski at 5
 µm), held-out 2.8-14.2 µm (classic at 10 µm missed: between the bench's masses its contact rolls
