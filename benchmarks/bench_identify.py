@@ -89,14 +89,21 @@ def contact_error(ident: Ski, true: Ski) -> float:
     return 100 * worst
 
 
-def row(ski_name: str, noise: float, cov: str, max_nfev: int, seed: int = 1) -> list:
-    true = stiff_test_ski() if ski_name == "stiff" else get_ski(ski_name)
+def bench_of(true, cov: str, noise: float, seed: int):
+    """The seeded virtual bench of ``true`` at one coverage, cut to the coverage's window."""
     kw, window = coverage(cov)
     bench = run_bench(true, noise=noise, seed=seed, **kw)
     if window is not None:
         t = bench.table
         keep = (t["x_mm"] > window[0] * 1e3) & (t["x_mm"] < window[1] * 1e3)
         bench = dataclasses.replace(bench, table=t[keep].reset_index(drop=True))
+    return bench
+
+
+def row(ski_name: str, noise: float, cov: str, max_nfev: int, seed: int = 1) -> list:
+    true = stiff_test_ski() if ski_name == "stiff" else get_ski(ski_name)
+    bench = bench_of(true, cov, noise, seed)
+    window = coverage(cov)[1]
     t0 = time.perf_counter()
     res = identify_ski(bench, max_nfev=max_nfev)
     seconds = time.perf_counter() - t0

@@ -29,23 +29,13 @@ import argparse
 import dataclasses
 
 import numpy as np
-from bench_identify import coverage, stiff_test_ski
+from bench_identify import bench_of, stiff_test_ski
 from bench_identify_contact import QUANTITIES, contact, differences
 
 from skisnow import SkisnowError
-from skisnow.ski import Ski, get_ski, run_bench
 from skisnow.ski import _identify as ident
+from skisnow.ski import get_ski
 from skisnow.ski._identify_fit import identified_profiles
-
-
-def bench_of(true: Ski, cov: str, noise: float, seed: int):
-    kw, window = coverage(cov)
-    bench = run_bench(true, noise=noise, seed=seed, **kw)
-    if window is not None:
-        t = bench.table
-        keep = (t["x_mm"] > window[0] * 1e3) & (t["x_mm"] < window[1] * 1e3)
-        bench = dataclasses.replace(bench, table=t[keep].reset_index(drop=True))
-    return bench
 
 
 def identify(bench, max_nfev: int):
