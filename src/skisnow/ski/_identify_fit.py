@@ -421,7 +421,9 @@ def fit_bench(
     else:
         p = np.concatenate([theta_e0, phi0])
 
-    # EI between 1 and 1e6 N m² (a ski is 100-10000): keeps the steps off overflow
+    # bounds on the log-EI spline coefficients, −10…25, i.e. EI within about 5e-5…7e10 N m²
+    # (a ski is 100–10000): they only keep the steps off overflow, they do not make the fit
+    # plausible (a tighter box, 0…13.8, was tried on the stalled seed-2 bench and not kept)
     lower = np.concatenate([np.full(n_stiffness, -10.0), np.full(n_camber - 2, -np.inf)])
     upper = np.concatenate([np.full(n_stiffness, 25.0), np.full(n_camber - 2, np.inf)])
 
