@@ -340,7 +340,6 @@ def solve_flexible(
     if candidates:
         apply_full = lambda v: op(v.reshape(shape)).ravel()  # noqa: E731
         precond_full = lambda v: inverse(v.reshape(shape)).ravel()  # noqa: E731
-        pre = None
         # the contact set by primal–dual active-set steps on nested grids (Hintermüller et
         # al. 2002); when the finest grid's set is too large for a dense Cholesky or the
         # steps cycle, MPRGP goes on from the coarse solution (already shrunk: no warm-up).
@@ -352,36 +351,31 @@ def solve_flexible(
             xs, h_line, np.asarray(ei), op=op, load=load, load_position=xm,
             modulus=modulus, width=width, tol=float(tol), workers=workers,
         )  # fmt: skip
+        # where MPRGP goes on from: (pressure, iterations, residual history, applications)
+        warm: tuple[np.ndarray, int, list[float], int] | None = None
         if result is None and start is not None:
             q, ok = restore(np.maximum(start, 0.0), xif, total, True)
             if ok:
-                pre = (q, None, 0.0, 0.0, 0, [], False, "", 0)
-        if result is None and pre is None:
+                warm = (q, 0, [], 0)
+        if result is None and warm is None:
             # a few whole-grid steps shrink the start's support (the rigid-hull start spreads
             # over far more cells than a bending ski touches)
             pre = active_set_cg(apply_full, precond_full, hf, xif, p0, tol=float(tol),
                                 max_iter=CANDIDATE_WARMUP)  # fmt: skip
-        if result is not None:
-            pass
-        elif pre is not None and pre[6]:
-            result = pre
-        elif pre is not None:
+            if pre[6]:
+                result = pre
+            else:
+                warm = (pre[0], pre[4], pre[5], pre[8])
+        if result is None and warm is not None:
             # then the candidate iteration takes over
-            result = flexible_on_candidates(op, inverse, hf, xif, pre[0], tol=float(tol),
-                                            max_iter=int(max_iter) - pre[4])  # fmt: skip
+            q, it0, hist0, nap0 = warm
+            result = flexible_on_candidates(op, inverse, hf, xif, q, tol=float(tol),
+                                            max_iter=int(max_iter) - it0)  # fmt: skip
             if result is None:  # too many candidates: go on on the whole grid from there
-                result = active_set_cg(
-                    apply_full,
-                    precond_full,
-                    hf,
-                    xif,
-                    pre[0],
-                    tol=float(tol),
-                    max_iter=int(max_iter) - pre[4],
-                )
+                result = active_set_cg(apply_full, precond_full, hf, xif, q, tol=float(tol),
+                                       max_iter=int(max_iter) - it0)  # fmt: skip
             p_, g_, a_, b_, it_, hist_, conv_, msg_, nap_ = result
-            result = (p_, g_, a_, b_, it_ + pre[4], pre[5] + hist_, conv_, msg_,
-                      nap_ + pre[8])  # fmt: skip
+            result = (p_, g_, a_, b_, it_ + it0, hist0 + hist_, conv_, msg_, nap_ + nap0)
     if result is None:
         result = active_set_cg(
             lambda v: op(v.reshape(shape)).ravel(),
