@@ -331,26 +331,36 @@ def fit_bench(
             z = _unloaded_camber(problem, light, theta, outer=unload == 2) if unload else None
             return np.concatenate([theta, phi0 if z is None else a_light @ z])
 
-        def misfit(log_ei: float, unload: int, shp: NDArray | None = None) -> float:
+        def cost_of(pp: NDArray[np.float64]) -> float:
             try:
-                r, _ = problem.evaluate(start(log_ei, unload, shp), jacobian=False)
+                r, _ = problem.evaluate(pp, jacobian=False)
             except (ConvergenceError, np.linalg.LinAlgError):
                 return np.inf
             return float(r @ r)
+
+        def misfit(log_ei: float, unload: int, shp: NDArray | None = None) -> float:
+            return cost_of(start(log_ei, unload, shp))
+
+        def unloadings(log_ei: float, shp: NDArray | None = None) -> list[float]:
+            # the misfits of the three z0 unloadings (2, 1, 0) at one level; the outermost
+            # runs are often all the patches: an identical start is solved once
+            seen: list[tuple[NDArray[np.float64], float]] = []
+            for u in (2, 1, 0):
+                pu = start(log_ei, u, shp)
+                same = [c for q, c in seen if np.array_equal(q, pu)]
+                seen.append((pu, same[0] if same else cost_of(pu)))
+            return [c for _, c in seen]
 
         # A constant EI: the best on its z0 (the lightest profile unloaded by the beam at that
         # EI, or, as a fallback when the unloading picks wrong contact patches, the zero-load
         # extrapolation), on a grid of log EI first (the misfit can have several minima), then
         # refined around the best grid point by a bounded scalar search.
         grid_log = np.linspace(np.log(30.0), np.log(3e4), 13)
-        table = []
-        for k, v in enumerate(grid_log):
-            seen: list[tuple[NDArray[np.float64], float]] = []
-            for u in (2, 1, 0):  # the outermost runs are often all the patches: solved once
-                pu = start(float(v), u)
-                same = [c for q, c in seen if np.array_equal(q, pu)]
-                table.append((same[0] if same else misfit(float(v), u), k, u))
-                seen.append((pu, table[-1][0]))
+        table = [
+            (c, k, u)
+            for k, v in enumerate(grid_log)
+            for u, c in zip((2, 1, 0), unloadings(float(v)), strict=True)
+        ]
         _, k, unload = min(table, key=lambda item: item[0])
         lo, hi = grid_log[max(k - 1, 0)], grid_log[min(k + 1, grid_log.size - 1)]
         best_log = minimize_scalar(
@@ -373,13 +383,9 @@ def fit_bench(
             # from the best of them while the misfit falls. Measured on the classic's full
             # sequence: the minimum over a 7-level x 3-unloading grid lay at the centre in 20
             # of 22 re-estimates, and the grid was 21 contact solves of every load case.
-            costs: dict[tuple[float, int], float] = {}
-            seen: list[tuple[NDArray[np.float64], float]] = []
-            for u in (2, 1, 0):
-                pu = start(centre, u, shp)
-                same = [c for q, c in seen if np.array_equal(q, pu)]
-                costs[centre, u] = same[0] if same else misfit(centre, u, shp)
-                seen.append((pu, costs[centre, u]))
+            costs = {
+                (centre, u): c for u, c in zip((2, 1, 0), unloadings(centre, shp), strict=True)
+            }
             (lvl, u_best), c_best = min(costs.items(), key=lambda item: item[1])
             for direction in (1.0, -1.0):
                 moved = False
