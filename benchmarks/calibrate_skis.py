@@ -31,6 +31,7 @@ import argparse
 import json
 import math
 import time
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -167,16 +168,53 @@ def _hinge(value: float, lo: float | None, hi: float | None, scale: float) -> fl
     return 0.0
 
 
-#: Breitschädel's stiffness k [N/mm] allowed for a skate ski. Breitschädel et al. (2010) measured
-#: the skating skis of the Norwegian national teams on a SkiSelector (k = change of camber height
-#: from ½ to 1 body weight): team means 225.4 ± 65.3 (biathlon), 247.2 ± 86.6 (cross-country),
-#: 251.4 ± 53.3 N/mm (Nordic combined), mean ± SD over the skis. The team means (225-251) are
-#: the narrow default; ``--k-range 95 420`` is mean ± 2 SD over the three teams, the range of
-#: the skis themselves.
-K_RANGE: list[float] = [225.0, 251.0]
+@dataclass(frozen=True)
+class FitOptions:
+    """What the residuals ask for besides the captions (the command-line options of a fit).
+
+    Attributes
+    ----------
+    plausibility
+        Hinge terms on the practitioners' numbers (``--caption-only`` turns them off).
+    hinge_weight, topology_weight, ei_shape_weight
+        Weights of the plausibility hinges, the topology residuals and the EI shape hinges
+        (``--hinge-weight``, ``--topology-weight``, ``--ei-shape-weight``; the records of the
+        first fits used 2, 0 and 0).
+    k_range_n_per_mm
+        Breitschädel's stiffness k [N/mm] allowed for a skate ski. Breitschädel et al. (2010)
+        measured the skating skis of the Norwegian national teams on a SkiSelector (k = change
+        of camber height from ½ to 1 body weight): team means 225.4 ± 65.3 (biathlon),
+        247.2 ± 86.6 (cross-country), 251.4 ± 53.3 N/mm (Nordic combined), mean ± SD over the
+        skis. The team means (225-251) are the narrow default; ``--k-range 95 420`` is mean ±
+        2 SD over the three teams, the range of the skis themselves.
+    rear_growth_min
+        Least growth of the skate's rear contact from 30 to 60 kg on 100 MPa asked by the
+        topology residual (the paper's is 288/146 = 1.97); ``--findings`` asks 1.4, the
+        threshold of the findings test (tests/contact/test_zones.py).
+    bench_topology
+        ``--bench-topology``: the skate's front also one patch at 30 kg and two at 65 kg on the
+        bench (-120 mm), and its front mean pressure rising from 30 to 60 kg on 100 MPa by at
+        least ``front_pressure_growth_min`` (paper 13.8 -> 28.9 kPa = 2.1x; the records up to
+        calibration_skate_v3.json asked 1.2, ``--findings`` asks 1.5, the findings test's
+        threshold).
+    share_change
+        ``--findings``: also the rear/front load partition hardly changing from 30 to 60 kg on
+        100 MPa (paper 67 -> 71 %, a change of 0.04): a hinge at ``SHARE_CHANGE_MAX``, one unit
+        per load-share point.
+    """
+
+    plausibility: bool = True
+    hinge_weight: float = 2.0
+    topology_weight: float = 0.0
+    ei_shape_weight: float = 0.0
+    k_range_n_per_mm: tuple[float, float] = (225.0, 251.0)
+    rear_growth_min: float = 1.25
+    bench_topology: bool = False
+    front_pressure_growth_min: float = 1.2
+    share_change: bool = False
 
 
-def plausibility_residuals(kind: str, prac: dict[str, float]) -> list[float]:
+def plausibility_residuals(kind: str, prac: dict[str, float], opts: FitOptions) -> list[float]:
     """Hinge residuals (0 inside the practitioners' ranges; sources in ``_skis.py``)."""
     if kind == "classic":
         return [
@@ -187,7 +225,7 @@ def plausibility_residuals(kind: str, prac: dict[str, float]) -> list[float]:
             _hinge(prac["free_camber_mm"], None, 15.0, 1.0),
         ]
     return [
-        _hinge(prac["k_n_per_mm"], *K_RANGE, 5),
+        _hinge(prac["k_n_per_mm"], *opts.k_range_n_per_mm, 5),
         _hinge(prac["camber_full_mm"], 1.2, None, 0.05),
         _hinge(prac["h_130kg_mm"], 0.15, None, 0.02),
         _hinge(prac["free_camber_mm"], None, 15.0, 1.0),
@@ -223,42 +261,29 @@ def topology(ski: Ski, solved: list) -> dict[str, float]:
     return {"middle_patches_60_70": float(z70["middle"].patches)}
 
 
-#: Least growth of the skate's rear contact from 30 to 60 kg on 100 MPa asked by the topology
-#: residual (the paper's is 288/146 = 1.97); ``--findings`` asks 1.4, the threshold of the
-#: findings test (tests/contact/test_zones.py).
-REAR_GROWTH_MIN = [1.25]
-
-
-#: ``--bench-topology``: the skate's front also one patch at 30 kg and two at 65 kg on the bench
-#: (-120 mm), and its front mean pressure rising from 30 to 60 kg on 100 MPa by at least
-#: FRONT_PRESSURE_GROWTH_MIN (paper 13.8 -> 28.9 kPa = 2.1x; the records up to
-#: calibration_skate_v3.json asked 1.2, ``--findings`` asks 1.5, the findings test's threshold).
-BENCH_TOPOLOGY = [False]
-FRONT_PRESSURE_GROWTH_MIN = [1.2]
-#: ``--findings``: also the rear/front load partition hardly changing from 30 to 60 kg on
-#: 100 MPa (paper 67 -> 71 %, a change of 0.04): a hinge at 0.04, one unit per load-share point.
-SHARE_CHANGE = [False]
+#: The largest change of the skate's rear load share from 30 to 60 kg on 100 MPa that
+#: ``FitOptions.share_change`` allows (the paper's 67 -> 71 %).
 SHARE_CHANGE_MAX = 0.04
 
 
-def topology_residuals(kind: str, topo: dict[str, float]) -> list[float]:
+def topology_residuals(kind: str, topo: dict[str, float], opts: FitOptions) -> list[float]:
     """Residuals of the topology (0 when it holds), in the units of a patch-count miss."""
     if kind == "skate":
         g = topo["rear_growth_30_60"]
         res = [
-            max(0.0, math.log(REAR_GROWTH_MIN[0]) - math.log(max(g, 1e-6))) / math.log(1.2),
+            max(0.0, math.log(opts.rear_growth_min) - math.log(max(g, 1e-6))) / math.log(1.2),
             abs(topo["front_patches_30"] - 1.0),
             abs(topo["front_patches_60"] - 2.0),
         ]
-        if BENCH_TOPOLOGY[0]:  # Fig. 8 (split at ~35 kg on stiff snow), Fig. 5 captions
+        if opts.bench_topology:  # Fig. 8 (split at ~35 kg on stiff snow), Fig. 5 captions
             gp = topo["front_pressure_growth_30_60"]
             res += [
                 abs(topo["bench_front_patches_30"] - 1.0),
                 abs(topo["bench_front_patches_65"] - 2.0),
-                max(0.0, math.log(FRONT_PRESSURE_GROWTH_MIN[0]) - math.log(max(gp, 1e-6)))
+                max(0.0, math.log(opts.front_pressure_growth_min) - math.log(max(gp, 1e-6)))
                 / math.log(1.25),
             ]
-        if SHARE_CHANGE[0]:
+        if opts.share_change:
             res.append(max(0.0, topo["rear_share_change_30_60"] - SHARE_CHANGE_MAX) / 0.01)
         return res
     return [abs(topo["middle_patches_60_70"] - 1.0)]
@@ -321,31 +346,27 @@ def caption_residuals(ski: Ski, solved: list | None = None) -> tuple[list[float]
 
 
 BAD = 1e3
-N_RES: dict[str, int] = {}  # residuals per ski (fixed by the captions)
-#: Weights of the plausibility hinges and of the topology residuals (``--hinge-weight``,
-#: ``--topology-weight``; the records of the first fits used 2 and 0).
-WEIGHTS = {"hinge": 2.0, "topology": 0.0, "ei_shape": 0.0}
 
 
-def residuals(kind: str, v: np.ndarray, use_plausibility: bool) -> np.ndarray:
+def residuals(kind: str, v: np.ndarray, opts: FitOptions, n_res: int = 1) -> np.ndarray:
+    """All residuals of a parameter vector; ``n_res`` of ``BAD / sqrt(n_res)`` for a ski that
+    cannot be solved (``n_res``: the count of a feasible ski, which least squares needs fixed)."""
     try:
         ski = make_ski(kind, v)
         solved: list = []
         res, _ = caption_residuals(ski, solved)
-        if use_plausibility:
-            w = WEIGHTS["hinge"]
-            res += [w * r for r in plausibility_residuals(kind, plausibility(ski))]
+        if opts.plausibility:
+            w = opts.hinge_weight
+            res += [w * r for r in plausibility_residuals(kind, plausibility(ski), opts)]
         else:
             res += [0.0] * (5 if kind == "classic" else 4)
-        if WEIGHTS["topology"] > 0:
-            w = WEIGHTS["topology"]
-            res += [w * r for r in topology_residuals(kind, topology(ski, solved))]
-        if WEIGHTS["ei_shape"] > 0:
-            res += [WEIGHTS["ei_shape"] * r for r in ei_shape_residuals(kind, v)]
+        if opts.topology_weight > 0:
+            w = opts.topology_weight
+            res += [w * r for r in topology_residuals(kind, topology(ski, solved), opts)]
+        if opts.ei_shape_weight > 0:
+            res += [opts.ei_shape_weight * r for r in ei_shape_residuals(kind, v)]
     except Exception:  # an infeasible shape: no wax pocket, the load off the supports, ...
-        n = N_RES.get(kind, 1)
-        return np.full(n, BAD / math.sqrt(n))
-    N_RES[kind] = len(res)
+        return np.full(n_res, BAD / math.sqrt(n_res))
     return np.nan_to_num(np.asarray(res, dtype=float), nan=BAD, posinf=BAD, neginf=-BAD)
 
 
@@ -376,7 +397,7 @@ def fit(
     seed: int,
     generations: int,
     popsize: int,
-    use_plausibility: bool,
+    opts: FitOptions,
     start: np.ndarray | None = None,
     sigma: float = 0.08,
     more_starts: tuple[np.ndarray, ...] = (),
@@ -395,14 +416,14 @@ def fit(
     def vec(u: np.ndarray) -> np.ndarray:
         return lo + (hi - lo) * np.clip(u, 0.0, 1.0)
 
-    residuals(kind, vec(u0), use_plausibility)  # fixes N_RES[kind]
+    n_res = residuals(kind, vec(u0), opts).size  # the residual count least squares needs fixed
     count = [0]
     best = [math.inf]
     t0 = time.perf_counter()
 
     def objective(u: np.ndarray) -> float:
         count[0] += 1
-        f = float(np.sum(residuals(kind, vec(u), use_plausibility) ** 2))
+        f = float(np.sum(residuals(kind, vec(u), opts, n_res) ** 2))
         if f < best[0]:
             best[0] = f
             print(
@@ -424,7 +445,7 @@ def fit(
     )  # fmt: skip
     print(f"  DE: {de.nit} generations, {de.nfev} evaluations, misfit {de.fun:.3f}", flush=True)
     ls = least_squares(
-        lambda u: residuals(kind, vec(u), use_plausibility),
+        lambda u: residuals(kind, vec(u), opts, n_res),
         de.x, bounds=(0.0, 1.0), method="trf", diff_step=0.01, max_nfev=20 * u0.size,
     )  # fmt: skip
     u = ls.x if 2 * ls.cost < de.fun else de.x
@@ -435,13 +456,13 @@ def fit(
     }  # fmt: skip
 
 
-def report(kind: str, v: np.ndarray) -> dict:
+def report(kind: str, v: np.ndarray, opts: FitOptions = FitOptions()) -> dict:
     ski = make_ski(kind, v)
     solved: list = []
     _, rows = caption_residuals(ski, solved)
     prac = plausibility(ski)
     topo = topology(ski, solved)
-    hinges = plausibility_residuals(kind, prac)
+    hinges = plausibility_residuals(kind, prac, opts)
     shape = ei_shape_residuals(kind, v)
     ei, z = unpack(kind, v)
     print(f"\n{kind}: kick zone {ski.kick_zone}")
@@ -477,7 +498,7 @@ def report(kind: str, v: np.ndarray) -> dict:
         "ei_shape_residuals": shape,
         "ei_shape_holds": not any(shape),
         "topology": topo,
-        "topology_holds": not any(topology_residuals(kind, topo)),
+        "topology_holds": not any(topology_residuals(kind, topo, opts)),
         "caption_misfit": caption_misfit,
         "captions_within_tolerance": all(r.ok for r in rows),
         "captions": [r.as_dict() for r in rows],
@@ -678,20 +699,24 @@ def main() -> None:
         print(write_shipped(doc, SHIPPED / f"{doc['ski']}.json"))
         return
     args.out.mkdir(parents=True, exist_ok=True)
+    opts = FitOptions(
+        plausibility=not args.caption_only,
+        hinge_weight=args.hinge_weight,
+        topology_weight=args.topology_weight,
+        ei_shape_weight=args.ei_shape_weight,
+        bench_topology=args.bench_topology or args.findings,
+        share_change=args.findings,
+    )
+    if args.findings:
+        opts = replace(opts, rear_growth_min=1.4, front_pressure_growth_min=1.5)
+        if args.front_pressure_growth_min is not None:
+            opts = replace(opts, front_pressure_growth_min=args.front_pressure_growth_min)
+    if args.k_range is not None:
+        opts = replace(opts, k_range_n_per_mm=(args.k_range[0], args.k_range[1]))
     for kind in args.ski or ["classic", "skate"]:
         if args.shipped:
-            report(kind, shipped_vector(kind))
+            report(kind, shipped_vector(kind), opts)
             continue
-        WEIGHTS["hinge"], WEIGHTS["topology"] = args.hinge_weight, args.topology_weight
-        WEIGHTS["ei_shape"] = args.ei_shape_weight
-        BENCH_TOPOLOGY[0] = args.bench_topology or args.findings
-        SHARE_CHANGE[0] = args.findings
-        if args.findings:
-            REAR_GROWTH_MIN[0], FRONT_PRESSURE_GROWTH_MIN[0] = 1.4, 1.5
-            if args.front_pressure_growth_min is not None:
-                FRONT_PRESSURE_GROWTH_MIN[0] = args.front_pressure_growth_min
-        if args.k_range is not None:
-            K_RANGE[:] = [float(v) for v in args.k_range]
         starts = []
         for src in args.start or []:
             if src == "shipped":
@@ -705,10 +730,10 @@ def main() -> None:
             )
         result = fit(
             kind, seed=args.seed, generations=args.generations, popsize=args.popsize,
-            use_plausibility=not args.caption_only, start=starts[0] if starts else None,
+            opts=opts, start=starts[0] if starts else None,
             sigma=args.sigma, more_starts=tuple(starts[1:]), max_seconds=60 * args.max_minutes,
         )  # fmt: skip
-        doc = report(kind, np.array(result["vector"]))
+        doc = report(kind, np.array(result["vector"]), opts)
         doc |= {
             "seed": args.seed,
             "generations": args.generations,
@@ -719,9 +744,9 @@ def main() -> None:
             "ei_shape_weight": args.ei_shape_weight,
             "bench_topology": args.bench_topology or args.findings,
             "findings": args.findings,
-            "rear_growth_min": REAR_GROWTH_MIN[0],
-            "front_pressure_growth_min": FRONT_PRESSURE_GROWTH_MIN[0],
-            "k_range_n_per_mm": list(K_RANGE),
+            "rear_growth_min": opts.rear_growth_min,
+            "front_pressure_growth_min": opts.front_pressure_growth_min,
+            "k_range_n_per_mm": list(opts.k_range_n_per_mm),
             "starts": args.start or ["START"],
             "sigma": args.sigma,
             "evaluations": result["evaluations"],
