@@ -24,7 +24,9 @@ Equation map (Kalliorinne et al. 2023 unless named):
   :class:`Provenance`; ski files (JSON ``skisnow-ski`` v1, validated, exact round trip):
   :func:`read_ski`, :func:`write_ski`, :func:`ski_to_json`; the passport (EI(x), z0(x), bands,
   metrics): :func:`ski_passport` → :class:`SkiPassport`; EI(x) and z0(x) identified from a
-  bench sequence: :func:`identify_ski` → :class:`IdentificationResult`; beam references for the
+  bench sequence: :func:`identify_ski` → :class:`IdentificationResult`, its uncertainty predicted
+  for a bench plan before measuring (Fisher information, Cramér–Rao):
+  :func:`predict_identification_uncertainty` → :class:`BenchPlanPrediction`; beam references for the
   tests: :func:`cantilever_tip_deflection`, :func:`three_point_bending_deflection`,
   :func:`beam_stiffness_matrix`, :func:`hermite_interpolate`.
 * Practitioners' metrics (Breitschädel 2012): camber height :func:`camber_height`, wax pocket
@@ -102,6 +104,9 @@ _LAZY = {
     **dict.fromkeys(("load_network", "save_network", "shipped_network"), "skisnow.io"),
     **dict.fromkeys(("TrainingProgress", "train_network"), "skisnow.ski._training"),
     **dict.fromkeys(("IdentificationResult", "identify_ski"), "skisnow.ski._identify"),
+    **dict.fromkeys(
+        ("BenchPlanPrediction", "predict_identification_uncertainty"), "skisnow.ski._bench_plan"
+    ),
 }
 
 
@@ -118,6 +123,7 @@ __all__ = [
     "SKI_FILE_VERSION",
     "Architecture",
     "BeamSolution",
+    "BenchPlanPrediction",
     "BlockNetwork",
     "CamberNetwork",
     "Domain",
@@ -145,6 +151,7 @@ __all__ = [
     "identify_ski",
     "load_network",
     "loaded_profile",
+    "predict_identification_uncertainty",
     "read_ski",
     "run_bench",
     "save_network",
