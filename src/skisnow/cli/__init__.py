@@ -5,6 +5,7 @@ them here registers the commands.
 """
 
 from skisnow.cli import (  # noqa: F401  (registers)
+    _bench_plan,
     _contact,
     _demo,
     _explore,
