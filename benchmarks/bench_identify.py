@@ -89,15 +89,33 @@ def contact_error(ident: Ski, true: Ski) -> float:
     return 100 * worst
 
 
-def bench_of(true, cov: str, noise: float, seed: int):
-    """The seeded virtual bench of ``true`` at one coverage, cut to the coverage's window."""
-    kw, window = coverage(cov)
-    bench = run_bench(true, noise=noise, seed=seed, **kw)
+def plan_bench(true, masses, load_positions, window, noise: float, seed: int):
+    """The seeded virtual bench of ``true`` for a plan, cut to the open ``window`` [m] (or not)."""
+    bench = run_bench(true, masses=masses, load_positions=load_positions, noise=noise, seed=seed)
     if window is not None:
         t = bench.table
         keep = (t["x_mm"] > window[0] * 1e3) & (t["x_mm"] < window[1] * 1e3)
         bench = dataclasses.replace(bench, table=t[keep].reset_index(drop=True))
     return bench
+
+
+def bench_of(true, cov: str, noise: float, seed: int):
+    """The seeded virtual bench of ``true`` at one coverage, cut to the coverage's window."""
+    kw, window = coverage(cov)
+    return plan_bench(true, kw["masses"], kw["load_positions"], window, noise, seed)
+
+
+def error_profiles(ident: Ski, true: Ski, window) -> tuple[np.ndarray, np.ndarray]:
+    """The errors of an identified ski: EI relative error at 86 stations from -450 to +400 mm,
+    z0 difference [m] modulo its least-squares line at 400 stations over the measured window
+    (20 mm in from its ends)."""
+    x = np.linspace(-0.45, 0.40, 86)
+    ei = ident.stiffness(x) / true.stiffness(x) - 1
+    lo = max(true.x_tail, -0.9 if window else true.x_tail) + 0.02
+    hi = min(true.x_tip, 0.85 if window else true.x_tip) - 0.02
+    xz = np.linspace(lo, hi, 400)
+    d = ident.free_camber(xz) - true.free_camber(xz)
+    return ei, d - np.polyval(np.polyfit(xz, d, 1), xz)
 
 
 def row(ski_name: str, noise: float, cov: str, max_nfev: int, seed: int = 1) -> list:
@@ -108,14 +126,11 @@ def row(ski_name: str, noise: float, cov: str, max_nfev: int, seed: int = 1) -> 
     res = identify_ski(bench, max_nfev=max_nfev)
     seconds = time.perf_counter() - t0
     ident = res.ski
-    x = np.linspace(-0.45, 0.40, 86)
-    ei = 100 * np.sqrt(np.mean((ident.stiffness(x) / true.stiffness(x) - 1) ** 2))
+    ei_err, d = error_profiles(ident, true, window)
+    ei = 100 * np.sqrt(np.mean(ei_err**2))
+    z0 = 1e6 * np.sqrt(np.mean(d**2))
     lo = max(true.x_tail, -0.9 if window else true.x_tail) + 0.02
     hi = min(true.x_tip, 0.85 if window else true.x_tip) - 0.02
-    xz = np.linspace(lo, hi, 400)
-    d = ident.free_camber(xz) - true.free_camber(xz)
-    d -= np.polyval(np.polyfit(xz, d, 1), xz)
-    z0 = 1e6 * np.sqrt(np.mean(d**2))
     held = []
     xs = np.linspace(lo, hi, 400)
     for m in (35.0, 75.0):
