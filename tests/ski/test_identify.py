@@ -283,3 +283,48 @@ def test_a_fit_that_stalls_above_the_noise_is_globalised() -> None:
         hi = solve_beam(res.ski, mass=m, load_position=-0.12).sample(xz)
         ht = solve_beam(true, mass=m, load_position=-0.12).sample(xz)
         assert np.sqrt(np.mean((hi - ht) ** 2)) < noise
+
+
+def test_the_z0_resolution_is_refined_until_the_fit_reaches_the_noise() -> None:
+    # The shipped skate of version 2 has a sharp camber peak (5.9 mm) that a z0 spline of 100
+    # coefficients (19 mm knots) cannot follow to the noise of a good bench (2 µm; six load
+    # cases at two positions): started at the true ski, its fit stays above the noise. The
+    # discrepancy principle must then halve the knot spacing (197 coefficients) and the
+    # refined fit reach the noise and recover the ski: z0 within the 10 µm rms (modulo
+    # the line the bench cannot see) and profiles at load cases the bench did not measure (35
+    # and 75 kg at -160 mm) within the noise. A bench whose fit is at the noise already (the
+    # same bench with the fine resolution given) is not refined.
+    true = get_ski("skate")
+    noise = 2e-6
+    bench = run_bench(true, masses=(20, 50, 80), load_positions=(-0.04, -0.2), noise=noise,
+                      seed=1)  # fmt: skip
+    res = ident.identify_ski(bench, initial=true, max_nfev=20, n_camber=100, n_camber_max=200)
+    bound = ident_fit.at_noise_bound(res.n_bins)
+    (n0, m0), (n1, m1) = res.resolution
+    assert (n0, n1) == (100, 197) and m0 > bound
+    assert res.misfit == m1 <= bound and res.at_noise
+    assert res.ski.provenance.detail("n_camber") == 197
+    xs = np.linspace(true.x_tail + 0.02, true.x_tip - 0.02, 400)
+    d = res.ski.free_camber(xs) - true.free_camber(xs)
+    d -= np.polyval(np.polyfit(xs, d, 1), xs)
+    assert np.sqrt(np.mean(d**2)) < 10e-6
+    for m in (35.0, 75.0):
+        hi = solve_beam(res.ski, mass=m, load_position=-0.16).sample(xs)
+        ht = solve_beam(true, mass=m, load_position=-0.16).sample(xs)
+        assert np.sqrt(np.mean((hi - ht) ** 2)) < noise
+    fine = ident.identify_ski(bench, initial=true, max_nfev=20, n_camber=197, n_camber_max=400)
+    assert len(fine.resolution) == 1 and fine.misfit <= bound
+
+
+def test_the_discrepancy_bound_and_the_information_criterion() -> None:
+    # at_noise_bound: the rms of n standard normal residuals exceeds it with the probability of
+    # two standard deviations of a normal variable (2.3 %); significant_decrease: refining by
+    # k parameters that only fit noise (χ² falls by χ²_k) is kept almost never.
+    rng = np.random.default_rng(0)
+    n, k = 2000, 100
+    rms = np.sqrt(np.mean(rng.standard_normal((4000, n)) ** 2, axis=1))
+    above = np.mean(rms > ident_fit.at_noise_bound(n))
+    assert 0.01 < above < 0.04
+    drops = rng.chisquare(k, 4000)
+    assert not any(ident_fit.significant_decrease(n + d, n, k, n) for d in drops)
+    assert ident_fit.significant_decrease(2.0 * n, n, k, n)

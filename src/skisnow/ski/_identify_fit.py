@@ -92,7 +92,14 @@ from skisnow.ski._identify_smooth import SmoothedBench
 from skisnow.ski._lcp import lower_hull_bracket
 from skisnow.ski._skis import Ski
 
-__all__ = ["BenchFit", "fit_bench", "identified_profiles"]
+__all__ = [
+    "BenchFit",
+    "at_noise_bound",
+    "fit_bench",
+    "identified_profiles",
+    "refined_parameters",
+    "significant_decrease",
+]
 
 
 #: Misfit (σ-normalised rms of the bins) above which a fit is not at the noise: a fit at the
@@ -103,6 +110,44 @@ __all__ = ["BenchFit", "fit_bench", "identified_profiles"]
 #: noise, seed 1, stalled in a local minimum: 2.05 (EI 63 %); with it, seed 5: 1.00 (EI 3.8 %),
 #: 5 µm seed 1: 1.07 (EI 9.0 %).
 AT_NOISE = 1.2
+
+
+def at_noise_bound(n_bins: int) -> float:
+    """The discrepancy bound of the σ-normalised misfit (rms over ``n_bins`` bins): a fit at the
+    noise has misfit² ~ χ²_n / n, mean 1 and standard deviation (2 / n)^1/2, so the misfit is
+    1 ± (2 n)^-1/2; the bound is two of those standard deviations above 1, 1 + 2 (2 n)^-1/2.
+    Used by the discrepancy principle (Morozov 1966) that chooses the z0 resolution: a fit
+    above it does not explain the bench down to its noise."""
+    return 1.0 + 2.0 / np.sqrt(2.0 * max(int(n_bins), 1))
+
+
+def significant_decrease(chi2_coarse: float, chi2_fine: float, added: int, n_data: int) -> bool:
+    """Whether refining a model by ``added`` parameters is worth it by the Bayesian information
+    criterion (Schwarz 1978), BIC = χ² + k ln n for σ-normalised residuals of ``n_data`` bins:
+    the sum of squares must fall by more than ``added`` ln n. (Fitting noise alone lowers it by
+    χ²_added, about ``added``; the ln n factor, 7-10 for benches of 10³-10⁴ bins, keeps a
+    refinement that only trades z0 against EI within the noise of a small bench from being
+    chosen: measured on the four-mass benches of ``benchmarks/bench_identify.py``, where a
+    refinement that lowered χ² by 3.7 times its added parameters made the held-out profiles
+    worse, 2.8 -> 7.3 µm.)"""
+    return bool(chi2_coarse - chi2_fine > added * np.log(max(int(n_data), 2)))
+
+
+def refined_parameters(
+    coarse: _Problem, fine: _Problem, parameters: NDArray[np.float64]
+) -> NDArray[np.float64]:
+    """The parameters of ``coarse`` on the z0 basis of ``fine`` (same log-EI basis): the z0
+    spline by least squares on the fine basis at four points per fine knot interval, exact when
+    the fine knots contain the coarse ones (uniform knots with the spacing halved, 2 n - 3
+    coefficients: knot insertion, Boehm 1980), then without its linear part (a straight line,
+    invisible to the bench)."""
+    theta_e, theta_z = coarse.split(parameters)
+    x0, x1 = float(fine.nodes[0]), float(fine.nodes[-1])
+    xs = np.linspace(x0, x1, 4 * (fine.n_z - 3) + 1)
+    theta_fine = np.linalg.lstsq(
+        _design(fine.t_z, xs), _design(coarse.t_z, xs) @ theta_z, rcond=None
+    )[0]
+    return np.concatenate([theta_e, fine.q_z.T @ theta_fine])
 
 
 @dataclass(frozen=True, kw_only=True, eq=False)
@@ -304,13 +349,18 @@ def fit_bench(
     max_nfev: int,
     continuation: Sequence[float],
     say: Callable[[str], None],
+    start_parameters: NDArray[np.float64] | None = None,
 ) -> BenchFit:
     """Fit the bench model to all load cases: start, continuation, GCV over ``lambdas`` (or the
     given ``regularisation``), the globalisation of a fit above the noise; options as in
-    :func:`~skisnow.ski.identify_ski`."""
+    :func:`~skisnow.ski.identify_ski`. ``start_parameters`` (parameters of ``problem``, e.g. a
+    coarser fit carried to a refined z0 basis by :func:`refined_parameters`) start the fit on
+    the exact contact directly, like ``initial``."""
     n_stiffness, n_camber = problem.n_e, problem.n_z
     # -- start: constant EI, z0 = the lightest profile (least squares on the z0 basis)
-    if initial is not None:
+    if start_parameters is not None:
+        z_start_x, z_start = nodes, np.zeros(nodes.size)  # unused: the start is given
+    elif initial is not None:
         theta_e0 = np.linalg.lstsq(
             _design(problem.t_e, nodes), np.log(initial.stiffness(nodes)), rcond=None
         )[0]
@@ -319,7 +369,10 @@ def fit_bench(
         z_start_x, z_start = _zero_load_profile(cases)
     # full-basis fit, then drop its linear part (invisible to the bench): Q is orthonormal
     phi0 = _camber_fit(problem, z_start_x) @ z_start
-    if initial is None:
+    physics = False
+    if start_parameters is not None:
+        p = np.asarray(start_parameters, dtype=float).copy()
+    elif initial is None:
         k_light = min(range(len(cases)), key=lambda k: cases[k].mass)
         light = cases[k_light]
         a_light = _camber_fit(problem, light.x)
@@ -524,7 +577,7 @@ def fit_bench(
             say(f"fit at λ = {lam:.3g}: misfit rms {sol.misfit_rms:.3g} σ, {sol.nfev} evaluations")
         return sol, lam, tuple(records), best
 
-    if initial is None and not physics:
+    if initial is None and start_parameters is None and not physics:
         p = homotopy(p)
     sol, lam, records, best = exact(p)
     if sol.misfit_rms > AT_NOISE:
