@@ -29,6 +29,7 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -135,7 +136,7 @@ def _rms(v: NDArray[np.float64]) -> float:
 
 def plan_problem(
     ski: Ski,
-    bench: object,
+    bench: Any,
     noise: float,
     *,
     stations: tuple[float, float] | None = None,
@@ -151,9 +152,9 @@ def plan_problem(
     from skisnow.ski._identify import _bench_cases
 
     if stations is not None:
-        t = bench.table  # type: ignore[attr-defined]
+        t = bench.table
         keep = (t["x_mm"] > stations[0] * 1e3) & (t["x_mm"] < stations[1] * 1e3)
-        bench = type(bench)(table=t[keep].reset_index(drop=True), metadata=bench.metadata)  # type: ignore[attr-defined]
+        bench = type(bench)(table=t[keep].reset_index(drop=True), metadata=bench.metadata)
     raw = _bench_cases(bench, ski.name)
     nodes = np.linspace(ski.x_tail, ski.x_tip, n_elements + 1)
     cases, _, _, _ = load_cases(raw, nodes, boot_length, bin_width)
