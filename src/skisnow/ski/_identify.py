@@ -43,7 +43,8 @@ unilateral contact with the rigid stone, loaded by m·g through the boot plate a
   collapse. From the default start the fit therefore runs first on a smoothed stone (a softplus
   penalty of width ε; :mod:`skisnow.ski._identify_smooth`): the light load cases (continuation
   in load), then all of them with ε = 10, 3, 1, 0.3, 0.1 µm, then on the exact contact.
-* Globalisation (only when the fit ends above the noise, misfit > :data:`AT_NOISE`): the stalled
+* Globalisation (only when the fit ends above the noise, misfit above the discrepancy bound
+  1 + 2 (2 n)^-1/2 of the next item; the warning keeps the margin :data:`AT_NOISE`): the stalled
   fits sit in a local minimum of the exact-contact misfit with the heaviest load's contact
   under the foot at the wrong node, in a stretch where the measured profile lies within the
   noise of the stone. The smoothed contact is restarted at the stalled fit (ε = 3 → 0.1 µm, a
@@ -198,7 +199,8 @@ class IdentificationResult:
         Bins of the fit (the n of ``misfit``).
     resolution
         ``((n_camber, misfit), ...)`` of each z0 resolution fitted, in turn (the discrepancy
-        principle: refined while above the noise; the last kept one is the ski's).
+        principle: refined while above the noise); the ski's is the provenance's ``n_camber``
+        (a last refinement that does not lower the information criterion is not kept).
     warnings
         Said when the fit is not at the noise (``misfit`` above :data:`AT_NOISE`): the
         identified ski may be a local minimum of the misfit, not the ski on the bench.
