@@ -34,8 +34,8 @@ SHIPPED_SETTINGS = {
     "seed": 0,
     "architecture": "6,16,16,16,12,12",
     "adam_steps": 600,
-    "lm_steps": 200,
-    "lm_points": 3000,
+    "lm_steps": 600,
+    "lm_points": 5000,
     "contact_weight": 4.0,
 }
 
@@ -85,12 +85,22 @@ def main() -> None:
     ap.add_argument("--skis", default="classic,skate")
     ap.add_argument("--lm-steps", type=int, default=None, help="override SHIPPED_SETTINGS")
     ap.add_argument("--lm-points", type=int, default=None, help="override SHIPPED_SETTINGS")
+    ap.add_argument("--seed", type=int, default=None, help="override SHIPPED_SETTINGS")
+    ap.add_argument("--ensemble", type=int, default=None, help="override SHIPPED_SETTINGS")
+    ap.add_argument("--widths", default=None, help="override SHIPPED_SETTINGS (architecture)")
     args = ap.parse_args()
     settings = dict(SHIPPED_SETTINGS)
-    if args.lm_steps is not None:
-        settings["lm_steps"] = args.lm_steps
-    if args.lm_points is not None:
-        settings["lm_points"] = args.lm_points
+    for key, value in (
+        ("lm_steps", args.lm_steps),
+        ("lm_points", args.lm_points),
+        ("seed", args.seed),
+        ("ensemble", args.ensemble),
+        ("architecture", args.widths),
+    ):
+        if value is not None:
+            settings[key] = value
+    if args.save and not args.retrain:
+        ap.error("--save needs --retrain")
 
     from rich.console import Console
     from rich.table import Table
