@@ -83,7 +83,10 @@ unilateral contact with the rigid stone, loaded by m·g through the boot plate a
 
 Accuracy (``benchmarks/bench_identify.py --ski classic skate stiff --coverage user full
 --noise-um 5 10 --max-nfev 40``, seed 1, and ``--seed 1 2 3 4 5`` for the spread; the README's
-identification table has the numbers, measured on 6db6490; the classic is the shipped classic of
+identification table has the numbers, now measured on 9444867 with the z0 refinement: the
+skate's full sequences within 1.6 % of the contact results and at 5 µm at 1.25 σ, the classic's
+full sequences at 0.99-1.03 σ with EI within 2.1 % and z0 within 2.4 µm, seeds 1-4; what
+follows was measured on 6db6490, before it; the classic is the shipped classic of
 version 2, bcb39eb: EI 57-6200 N m² with a stiff spot behind the foot, tip rising 31 mm; the
 skate the shipped skate of version 2, 319a4fa). From the default start every four-mass bench
 reaches the noise (30 benches: the classic, the skate of version 1 and the stiff ski, 5 and 10
