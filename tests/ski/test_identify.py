@@ -328,3 +328,44 @@ def test_the_discrepancy_bound_and_the_information_criterion() -> None:
     drops = rng.chisquare(k, 4000)
     assert not any(ident_fit.significant_decrease(n + d, n, k, n) for d in drops)
     assert ident_fit.significant_decrease(2.0 * n, n, k, n)
+
+
+def test_the_restart_bound_counts_the_fit_s_degrees_of_freedom() -> None:
+    # restart_bound: for a penalised linear least-squares fit (Gauss–Newton at the optimum),
+    # the residual χ² of pure noise has the mean n - tr(2H - H²) and exceeds the bound with the
+    # probability of two standard deviations of a normal variable (2.3 %).
+    rng = np.random.default_rng(1)
+    n, p = 600, 80
+    jac = rng.standard_normal((n, p))
+    pen = np.sqrt(3.0) * np.diff(np.eye(p), 2, axis=0)
+    bound, dof = ident_fit.restart_bound(jac, pen)
+    hat = jac @ np.linalg.solve(jac.T @ jac + pen.T @ pen, jac.T)
+    eps = rng.standard_normal((4000, n))
+    chi2 = np.sum((eps - eps @ hat.T) ** 2, axis=1)
+    assert abs(np.mean(chi2) - dof) < 3 * np.sqrt(2 * dof / chi2.size)
+    assert 0.01 < np.mean(chi2 > bound) < 0.04
+
+
+def test_a_local_minimum_within_the_bins_bound_is_restarted() -> None:
+    # The four-mass bench of the shipped skate (version 2) at 10 µm, seed 2: from the default
+    # start the exact-contact fit ends at 1.021 σ, inside the bound of the bins alone (1 + 2
+    # (2 n)^-1/2 = 1.038, n = 1400) but above the data's optimum (χ² 1461 against 1301
+    # residual degrees of freedom, 3.1 standard deviations) with EI 5.8 % and z0 24 µm off;
+    # the same bench fitted from the true ski ends at 1.012 σ. With the discrepancy bound of
+    # the fit's own degrees of freedom the smoothed-contact restart runs, and the fit must end
+    # at a misfit no higher than the one from the true ski (not in a worse local minimum: χ²
+    # within one unit, the fits' stopping test being a Gauss–Newton decrement of 0.01, against
+    # a standard deviation of χ² of 53) and within the issue's EI target (5 % rms between the
+    # glide zones).
+    true = get_ski("skate")
+    data = run_bench(true, masses=(20, 40, 60, 80), load_positions=(-0.12,), noise=NOISE,
+                     seed=2)  # fmt: skip
+    t = data.table
+    bench = dataclasses.replace(
+        data, table=t[(t["x_mm"] > -900) & (t["x_mm"] < 850)].reset_index(drop=True)
+    )
+    res = ident.identify_ski(bench, max_nfev=40)
+    from_truth = ident.identify_ski(bench, max_nfev=40, initial=true)
+    assert res.n_bins * (res.misfit**2 - from_truth.misfit**2) < 1.0
+    x = np.linspace(-0.45, 0.40, 86)
+    assert np.sqrt(np.mean((res.ski.stiffness(x) / true.stiffness(x) - 1) ** 2)) < 0.05

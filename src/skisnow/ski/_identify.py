@@ -43,8 +43,10 @@ unilateral contact with the rigid stone, loaded by m·g through the boot plate a
   collapse. From the default start the fit therefore runs first on a smoothed stone (a softplus
   penalty of width ε; :mod:`skisnow.ski._identify_smooth`): the light load cases (continuation
   in load), then all of them with ε = 10, 3, 1, 0.3, 0.1 µm, then on the exact contact.
-* Globalisation (only when the fit ends above the noise, misfit above the discrepancy bound
-  1 + 2 (2 n)^-1/2 of the next item; the warning keeps the margin :data:`AT_NOISE`): the stalled
+* Globalisation (only when the fit ends above the noise: χ² above the discrepancy bound of
+  its own residual degrees of freedom, dof + 2 (2 dof)^1/2, dof = n − tr(2H − H²) with H the
+  influence matrix of the penalised linearisation; the warning keeps the margin
+  :data:`AT_NOISE`): the stalled
   fits sit in a local minimum of the exact-contact misfit with the heaviest load's contact
   under the foot at the wrong node, in a stretch where the measured profile lies within the
   noise of the stone. The smoothed contact is restarted at the stalled fit (ε = 3 → 0.1 µm, a
