@@ -37,7 +37,7 @@ from numpy.typing import NDArray
 from skisnow._errors import InputError
 from skisnow.ski._beam import DEFAULT_BOOT_LENGTH, DEFAULT_N_ELEMENTS
 from skisnow.ski._identify import DEFAULT_LAMBDAS, load_cases
-from skisnow.ski._identify_fit import _camber_fit, levenberg_marquardt
+from skisnow.ski._identify_fit import _camber_fit, levenberg_marquardt, parameter_bounds
 from skisnow.ski._identify_model import _design, _Problem
 from skisnow.ski._skis import Ski
 
@@ -179,9 +179,7 @@ def fit_parameters(problem: _Problem, p0: NDArray[np.float64], lam: float, *, ma
         r, j = problem.evaluate(pp, jacobian=jacobian)
         return r, j, pen
 
-    n_e, n_par = problem.n_e, problem.n_params
-    lower = np.concatenate([np.full(n_e, -10.0), np.full(n_par - n_e, -np.inf)])
-    upper = np.concatenate([np.full(n_e, 25.0), np.full(n_par - n_e, np.inf)])
+    lower, upper = parameter_bounds(problem)
     return levenberg_marquardt(residuals, p0, lower, upper, max_nfev=max_nfev, tol=1e-3)
 
 

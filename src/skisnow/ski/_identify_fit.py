@@ -362,7 +362,9 @@ def _stiffness_from_differences(
         improved = False
         while mu < 1e8:
             step = np.linalg.solve(h + mu * np.diag(np.diag(h)), -g)
-            th_new = np.clip(theta + step, -10.0, 25.0)
+            # an overflow guard of the start only (wider than parameter_bounds, to which the
+            # fit clips its start; measured: the start at these bounds changes the fits)
+            th_new = np.clip(theta + step, LOG_EI_MIN, 25.0)
             cost_new = cost_of(th_new)
             if cost_new < cost:
                 theta, cost, mu, improved = th_new, cost_new, max(mu / 3, 1e-6), True
@@ -395,7 +397,7 @@ def fit_bench(
     :func:`~skisnow.ski.identify_ski`. ``start_parameters`` (parameters of ``problem``, e.g. a
     coarser fit carried to a refined z0 basis by :func:`refined_parameters`) start the fit on
     the exact contact directly, like ``initial``."""
-    n_stiffness, n_camber = problem.n_e, problem.n_z
+    n_stiffness = problem.n_e
     # -- start: constant EI, z0 = the lightest profile (least squares on the z0 basis)
     if start_parameters is not None:
         z_start_x, z_start = nodes, np.zeros(nodes.size)  # unused: the start is given
@@ -519,12 +521,7 @@ def fit_bench(
     else:
         p = np.concatenate([theta_e0, phi0])
 
-    # bounds on the log-EI spline coefficients, −10…ln 1e7, i.e. EI within about 5e-5…1e7 N m²
-    # (a ski is 100–10000): the lower one keeps the steps off overflow; the upper one keeps
-    # the stiffness matrix within double precision (:data:`_LOG_EI_MAX`). They do not make
-    # the fit plausible (a tighter box, 0…13.8, was tried on the stalled seed-2 bench)
-    lower = np.concatenate([np.full(n_stiffness, -10.0), np.full(n_camber - 2, -np.inf)])
-    upper = np.concatenate([np.full(n_stiffness, _LOG_EI_MAX), np.full(n_camber - 2, np.inf)])
+    lower, upper = parameter_bounds(problem)
 
     smooth = SmoothedBench(problem)
 
@@ -698,7 +695,22 @@ _HOMOTOPY_TOL = 0.1
 #: wandered at that floor (force imbalance 0.2 N, steps of 3-140 µm at the tip, no convergence
 #: in 100 iterations), so the restart that lowers a stalled fit could not run: 16.0 σ, EI 30 %
 #: off. With this bound: 9.9 -> 1.18 σ by the restart, 1.03 σ with the z0 refinement, EI 0.6 %.
-_LOG_EI_MAX = float(np.log(1e7))
+LOG_EI_MAX = float(np.log(1e7))
+#: Lower bound of the log-EI spline coefficients (EI ≥ 5e-5 N m²): keeps the steps off overflow.
+LOG_EI_MIN = -10.0
+
+
+def parameter_bounds(problem: _Problem) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """Bounds of the fit's parameters: the log-EI spline coefficients within
+    :data:`LOG_EI_MIN`…:data:`LOG_EI_MAX` (EI within about 5e-5…1e7 N m², a ski is 100–10000),
+    the z0 coefficients free. They keep the numerics in range and do not make the fit plausible
+    (a tighter box, 0…13.8, was tried on the stalled seed-2 bench)."""
+    n_e, n_par = problem.n_e, problem.n_params
+    lower = np.concatenate([np.full(n_e, LOG_EI_MIN), np.full(n_par - n_e, -np.inf)])
+    upper = np.concatenate([np.full(n_e, LOG_EI_MAX), np.full(n_par - n_e, np.inf)])
+    return lower, upper
+
+
 #: At most this many re-estimates of the EI shape from the load differences at the start.
 _SHAPE_ITERATIONS = 12
 #: Fractions of the bench's masses whose load differences give the EI shape, in turn.
