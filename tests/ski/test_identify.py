@@ -21,14 +21,19 @@ NOISE = 1e-5  # m: a bench's 10 µm
 TRUE = build_shipped("classic")
 
 
-@pytest.fixture(scope="module")
-def bench():
-    # what a user has: a few masses at one position, 10 µm noise, tip and tail not measured
-    data = run_bench(TRUE, masses=(20, 40, 60, 80), load_positions=(-0.12,), noise=NOISE,
-                     seed=3)  # fmt: skip
+def _user_bench(ski, noise: float, seed: int):
+    """What a user has: 20/40/60/80 kg at -120 mm, tip and tail not measured (-900…+850 mm)."""
+    data = run_bench(ski, masses=(20, 40, 60, 80), load_positions=(-0.12,), noise=noise,
+                     seed=seed)  # fmt: skip
     t = data.table
     keep = (t["x_mm"] > -900) & (t["x_mm"] < 850)
     return dataclasses.replace(data, table=t[keep].reset_index(drop=True))
+
+
+@pytest.fixture(scope="module")
+def bench():
+    # what a user has: a few masses at one position, 10 µm noise, tip and tail not measured
+    return _user_bench(TRUE, NOISE, seed=3)
 
 
 def _problem(bench, **kw):
@@ -141,11 +146,7 @@ def test_round_trip_from_the_default_start_on_a_classic_with_a_pocket() -> None:
 
     true = _pocket_classic()
     masses, positions = (20, 40, 60, 80), (-0.12,)
-    data = run_bench(true, masses=masses, load_positions=positions, noise=NOISE, seed=5)
-    t = data.table
-    bench = dataclasses.replace(
-        data, table=t[(t["x_mm"] > -900) & (t["x_mm"] < 850)].reset_index(drop=True)
-    )
+    bench = _user_bench(true, NOISE, seed=5)
     res = ident.identify_ski(bench, max_nfev=40)
 
     def misfit(ski):
@@ -219,11 +220,7 @@ def test_identifies_the_shipped_ski_from_a_user_bench(name: str) -> None:
     # masses between the bench's, where the contact rolls over glide-zone stations no bench
     # load presses (classic, 50 kg: 54-57 µm for seeds 1 and 5).
     true = get_ski(name)
-    data = run_bench(true, masses=(20, 40, 60, 80), load_positions=(-0.12,), noise=NOISE,
-                     seed=5)  # fmt: skip
-    t = data.table
-    keep = (t["x_mm"] > -900) & (t["x_mm"] < 850)
-    bench = dataclasses.replace(data, table=t[keep].reset_index(drop=True))
+    bench = _user_bench(true, NOISE, seed=5)
     t = bench.table
     sq = 0.0
     for (m, p), grp in t.groupby(["mass_kg", "load_position_mm"]):
@@ -265,12 +262,7 @@ def test_a_fit_that_stalls_above_the_noise_is_globalised() -> None:
     # profiles at the bench's loads within the noise.
     true = _stiff_skate()
     noise = 5e-6
-    data = run_bench(true, masses=(20, 40, 60, 80), load_positions=(-0.12,), noise=noise,
-                     seed=1)  # fmt: skip
-    t = data.table
-    bench = dataclasses.replace(
-        data, table=t[(t["x_mm"] > -900) & (t["x_mm"] < 850)].reset_index(drop=True)
-    )
+    bench = _user_bench(true, noise, seed=1)
     res = ident.identify_ski(bench, max_nfev=40)
     assert res.at_noise and res.misfit <= ident.AT_NOISE
     x = np.linspace(-0.45, 0.40, 86)  # between the glide zones
@@ -358,12 +350,7 @@ def test_a_local_minimum_within_the_bins_bound_is_restarted() -> None:
     # a standard deviation of χ² of 53) and within the issue's EI target (5 % rms between the
     # glide zones).
     true = get_ski("skate")
-    data = run_bench(true, masses=(20, 40, 60, 80), load_positions=(-0.12,), noise=NOISE,
-                     seed=2)  # fmt: skip
-    t = data.table
-    bench = dataclasses.replace(
-        data, table=t[(t["x_mm"] > -900) & (t["x_mm"] < 850)].reset_index(drop=True)
-    )
+    bench = _user_bench(true, NOISE, seed=2)
     res = ident.identify_ski(bench, max_nfev=40)
     from_truth = ident.identify_ski(bench, max_nfev=40, initial=true)
     assert res.n_bins * (res.misfit**2 - from_truth.misfit**2) < 1.0
