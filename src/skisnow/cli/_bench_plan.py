@@ -12,7 +12,14 @@ import typer
 from skisnow._errors import InputError
 from skisnow._values import parse_values
 from skisnow.cli._app import app
-from skisnow.cli._render import JsonOption, emit_json, print_table
+from skisnow.cli._render import (
+    JsonOption,
+    NCamberOption,
+    NStiffnessOption,
+    RegularisationOption,
+    emit_json,
+    print_table,
+)
 
 #: The issue's targets of the identification: EI within 5 % rms between the glide zones, z0
 #: within 10 µm rms (modulo a line).
@@ -66,16 +73,9 @@ def bench_plan(
             help="First,last measured station [mm], e.g. '-900,850' (default: the whole ski).",
         ),
     ] = None,
-    regularisation: Annotated[
-        float | None,
-        typer.Option("--regularisation", help="λ of log-EI smoothness (default: expected GCV)."),
-    ] = None,
-    n_stiffness: Annotated[
-        int, typer.Option("--n-stiffness", help="Spline coefficients of log EI(x).")
-    ] = 14,
-    n_camber: Annotated[
-        int, typer.Option("--n-camber", help="Spline coefficients of z0(x).")
-    ] = 100,
+    regularisation: RegularisationOption = None,
+    n_stiffness: NStiffnessOption = 14,
+    n_camber: NCamberOption = 100,
     target_ei_percent: Annotated[
         float, typer.Option("--target-ei-percent", help="EI target, rms % (-450..+400 mm).")
     ] = TARGET_EI_PERCENT,

@@ -11,7 +11,15 @@ from rich.markup import escape
 
 from skisnow._errors import InputError
 from skisnow.cli._app import app, report_converged
-from skisnow.cli._render import JsonOption, emit_json, err_console, print_table
+from skisnow.cli._render import (
+    JsonOption,
+    NCamberOption,
+    NStiffnessOption,
+    RegularisationOption,
+    emit_json,
+    err_console,
+    print_table,
+)
 
 
 @app.command()
@@ -34,16 +42,9 @@ def identify(
         float | None,
         typer.Option("--noise-mm", help="Bench noise [mm] (default: estimated from the data)."),
     ] = None,
-    regularisation: Annotated[
-        float | None,
-        typer.Option("--regularisation", help="λ of the log-EI smoothness (default: GCV)."),
-    ] = None,
-    n_stiffness: Annotated[
-        int, typer.Option("--n-stiffness", help="Spline coefficients of log EI(x).")
-    ] = 14,
-    n_camber: Annotated[
-        int, typer.Option("--n-camber", help="Spline coefficients of z0(x).")
-    ] = 100,
+    regularisation: RegularisationOption = None,
+    n_stiffness: NStiffnessOption = 14,
+    n_camber: NCamberOption = 100,
     max_nfev: Annotated[
         int, typer.Option("--max-nfev", help="Evaluation limit of each stage of the fit.")
     ] = 60,

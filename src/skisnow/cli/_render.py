@@ -51,6 +51,15 @@ SchedulerOption = Annotated[
         help="Address of an existing dask.distributed scheduler (default: a local cluster).",
     ),
 ]
+#: The identification's splines and smoothness (``skisnow identify`` and ``skisnow bench-plan``).
+NStiffnessOption = Annotated[
+    int, typer.Option("--n-stiffness", help="Spline coefficients of log EI(x).")
+]
+NCamberOption = Annotated[int, typer.Option("--n-camber", help="Spline coefficients of z0(x).")]
+RegularisationOption = Annotated[
+    float | None,
+    typer.Option("--regularisation", help="λ of the log-EI smoothness (default: chosen by GCV)."),
+]
 SkiModelOption = Annotated[
     str,
     typer.Option(
