@@ -155,7 +155,6 @@ from skisnow.ski._identify_fit import (
     fit_bench,
     identified_profiles,
     refined_parameters,
-    restart_bound,
     significant_decrease,
 )
 from skisnow.ski._identify_model import _bins, _Case, _hermite_matrix, _Problem
@@ -441,8 +440,7 @@ def identify_ski(
     # only if it lowers the Bayesian information criterion (Schwarz 1978).
     resolution = [(problem.n_z, float(fitted.solution.misfit_rms))]
     while 2 * problem.n_z - 3 <= n_camber_max:
-        chi2_fit = float(fitted.solution.fun @ fitted.solution.fun)
-        bound, _ = restart_bound(fitted.solution.jac, problem.penalty_matrix(fitted.regularisation))
+        chi2_fit, bound = float(fitted.solution.fun @ fitted.solution.fun), fitted.chi2_bound
         if chi2_fit <= bound:
             break
         fine = _Problem(cases, nodes, n_stiffness, 2 * problem.n_z - 3, sigma)

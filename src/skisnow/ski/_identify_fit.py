@@ -206,6 +206,9 @@ class BenchFit:
         Gauss–Newton (sandwich) covariance of the parameters (σ-normalised residuals).
     residuals
         σ-normalised residuals of the data at the solution.
+    chi2_bound
+        The discrepancy bound of the solution's χ² (:func:`restart_bound`): above it the fit is
+        not at the noise.
     """
 
     solution: Any
@@ -213,6 +216,7 @@ class BenchFit:
     records: tuple[tuple[float, float, float, float], ...]
     covariance: NDArray[np.float64]
     residuals: NDArray[np.float64]
+    chi2_bound: float
 
 
 def _zero_load_profile(cases: list[_Case]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
@@ -635,6 +639,7 @@ def fit_bench(
         trial = exact(p)
         if trial[0].misfit_rms < sol.misfit_rms:
             sol, lam, records, best = trial
+            bound, dof = restart_bound(sol.jac, problem.penalty_matrix(lam))
     final = _gcv(sol, problem.penalty_matrix(lam), lam)
     table = tuple(
         (rec[0], rec[1], rec[2], rec[3]) if k != best else final[:4]
@@ -644,8 +649,9 @@ def fit_bench(
     a_inv = np.linalg.pinv(jtj + sol.pen.T @ sol.pen)
     cov = a_inv @ jtj @ a_inv  # σ-normalised residuals: the covariance of p
     return BenchFit(
-        solution=sol, regularisation=lam, records=table, covariance=cov, residuals=sol.fun
-    )
+        solution=sol, regularisation=lam, records=table, covariance=cov, residuals=sol.fun,
+        chi2_bound=bound,
+    )  # fmt: skip
 
 
 def _gcv(sol: _LmResult, pen: NDArray[np.float64], lam: float):
