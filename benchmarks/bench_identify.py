@@ -106,15 +106,21 @@ def bench_of(true, cov: str, noise: float, seed: int):
     return plan_bench(true, kw["masses"], kw["load_positions"], window, noise, seed)
 
 
+def assessed_stations(true: Ski, window) -> np.ndarray:
+    """400 stations over the measured window (the user's -900…+850 mm, or the whole ski), 20 mm
+    in from its ends: where z0 and the held-out profiles are compared."""
+    lo = max(true.x_tail, -0.9 if window else true.x_tail) + 0.02
+    hi = min(true.x_tip, 0.85 if window else true.x_tip) - 0.02
+    return np.linspace(lo, hi, 400)
+
+
 def error_profiles(ident: Ski, true: Ski, window) -> tuple[np.ndarray, np.ndarray]:
     """The errors of an identified ski: EI relative error at 86 stations from -450 to +400 mm,
     z0 difference [m] modulo its least-squares line at 400 stations over the measured window
     (20 mm in from its ends)."""
     x = np.linspace(-0.45, 0.40, 86)
     ei = ident.stiffness(x) / true.stiffness(x) - 1
-    lo = max(true.x_tail, -0.9 if window else true.x_tail) + 0.02
-    hi = min(true.x_tip, 0.85 if window else true.x_tip) - 0.02
-    xz = np.linspace(lo, hi, 400)
+    xz = assessed_stations(true, window)
     d = ident.free_camber(xz) - true.free_camber(xz)
     return ei, d - np.polyval(np.polyfit(xz, d, 1), xz)
 
@@ -130,10 +136,8 @@ def row(ski_name: str, noise: float, cov: str, max_nfev: int, seed: int = 1) -> 
     ei_err, d = error_profiles(ident, true, window)
     ei = 100 * np.sqrt(np.mean(ei_err**2))
     z0 = 1e6 * np.sqrt(np.mean(d**2))
-    lo = max(true.x_tail, -0.9 if window else true.x_tail) + 0.02
-    hi = min(true.x_tip, 0.85 if window else true.x_tip) - 0.02
     held = []
-    xs = np.linspace(lo, hi, 400)
+    xs = assessed_stations(true, window)
     for m in (35.0, 75.0):
         hi_ = solve_beam(ident, mass=m, load_position=-0.16).sample(xs)
         ht = solve_beam(true, mass=m, load_position=-0.16).sample(xs)
