@@ -23,3 +23,34 @@ def test_shown_on_stderr_only(capsys) -> None:
     captured = capsys.readouterr()
     assert captured.out == ""  # stdout stays free for tables and the one JSON document
     assert "bench skate" in captured.err and "3/3" in captured.err
+
+
+def test_ctrl_c_while_the_bar_starts_leaves_it_closable(monkeypatch) -> None:
+    # A Ctrl-C between rich's Live marking itself started and pushing itself on the console's
+    # live stack (the moment the first chunk of a sweep reports progress) must still end as an
+    # interrupt: the KeyboardInterrupt comes once the bar has started, and closing the bar
+    # afterwards works (before: IndexError 'pop from empty list', an "internal error").
+    import signal
+
+    from rich.console import Console
+
+    from skisnow.cli._render import err_console
+
+    real = Console.set_live
+
+    def set_live(self, live):
+        signal.raise_signal(signal.SIGINT)  # Ctrl-C in the middle of Live.start
+        return real(self, live)
+
+    monkeypatch.setattr(Console, "set_live", set_live)
+    bar = progress_bar("interrupted", transient=True)
+    try:
+        bar(1, 10)
+    except KeyboardInterrupt:
+        interrupted = True
+    else:
+        interrupted = False
+    monkeypatch.undo()
+    bar.close()
+    assert interrupted
+    assert not bar._bar.live.is_started and not err_console._live_stack
