@@ -1,7 +1,7 @@
 """Calibrate the shipped skis on the captions of Kalliorinne et al. (2023), Figures 4–7.
 
 Run:  uv run python benchmarks/calibrate_skis.py [--ski skate|classic] [--seed 0]
-          [--generations 30] [--popsize 6] [--caption-only] [--out DIR]
+          [--generations 30] [--popsize 6] [--caption-only] [--knots default|dense] [--out DIR]
 
 A ski is a spline: log EI at 10 knots and the free camber z0 at 13 knots (both PCHIP, as
 :class:`skisnow.ski.Ski` interpolates them), the knots denser in the glide zones than in the
@@ -20,9 +20,13 @@ Fit: a seeded differential evolution (scipy.optimize.differential_evolution, Lat
 population in a box around the start, the start itself in the population) — derivative-free,
 because the patch-count terms jump — then a bounded least-squares polish
 (scipy.optimize.least_squares, trust-region reflective, forward differences) of the best
-member. ``--caption-only`` drops the plausibility terms: the side-by-side comparison of what
-the captions alone want against the shipped (plausible) ski. The fitted knots, the caption table
-and the plausibility numbers are written to ``DIR/calibration_<ski>[_caption_only].json``.
+member. ``--knots dense`` fits on DENSE_KNOTS (19 log-EI and 26 camber knots instead of 10
+and 13, the same two camber knots pinned), every ``--start`` resampled onto them (PCHIP in log
+EI and in z0; :func:`resampled_vector`): whether a misfit is a limit of the knots or of the
+model; the record stores its knots. ``--caption-only`` drops the plausibility terms: the
+side-by-side comparison of what the captions alone want against the shipped (plausible) ski.
+The fitted knots, the caption table and the plausibility numbers are written to
+``DIR/calibration_<ski>[_caption_only].json``.
 """
 
 from __future__ import annotations
@@ -35,6 +39,7 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
+from scipy.interpolate import PchipInterpolator
 from scipy.optimize import differential_evolution, least_squares
 
 from skisnow.paper import CAPTIONS, TOLERANCES, compare_case, solve_caption_case
@@ -44,6 +49,34 @@ from skisnow.ski._spline import SPLINE_ENDS, SPLINE_KNOTS, spline_ski
 
 BODY, POS = 65.0, -0.080  # the practitioners' skier [kg] and load position [m]
 PATCH_PENALTY = 3.0  # residual of a wrong patch count or an extra zone (in tolerance units)
+
+#: Denser knots (``--knots dense``): the knots of SPLINE_KNOTS and one more between most
+#: neighbours (19 log-EI and 26 camber knots instead of 10 and 13), still densest in the glide
+#: zones (every 40-60 mm there, 130-140 mm in the middle). A superset of the default knots, with
+#: the same two camber knots pinned (-0.64 and +0.54 m on the classic, -0.62 and +0.54 m on the
+#: skate), so a record resampled onto them starts close to itself. Used to ask whether a misfit
+#: is a limit of the parametrisation or of the model.
+# fmt: off
+DENSE_KNOTS: dict[str, tuple[tuple[float, ...], tuple[float, ...], tuple[int, int]]] = {
+    "classic": (
+        (-0.98, -0.92, -0.86, -0.80, -0.74, -0.68, -0.62, -0.54, -0.45, -0.22, 0.0, 0.20,
+         0.40, 0.46, 0.52, 0.59, 0.66, 0.78, 1.02),
+        (-0.98, -0.90, -0.82, -0.77, -0.72, -0.68, -0.64, -0.60, -0.56, -0.49, -0.42, -0.28,
+         -0.14, 0.0, 0.13, 0.26, 0.38, 0.42, 0.46, 0.50, 0.54, 0.58, 0.62, 0.68, 0.74, 1.02),
+        (6, 20),
+    ),
+    "skate": (
+        (-0.92, -0.86, -0.80, -0.74, -0.68, -0.62, -0.56, -0.48, -0.40, -0.20, 0.0, 0.20,
+         0.40, 0.46, 0.52, 0.59, 0.66, 0.78, 0.94),
+        (-0.92, -0.86, -0.80, -0.75, -0.70, -0.66, -0.62, -0.58, -0.54, -0.47, -0.40, -0.27,
+         -0.13, 0.0, 0.12, 0.24, 0.36, 0.41, 0.46, 0.50, 0.54, 0.58, 0.62, 0.67, 0.72, 0.94),
+        (6, 20),
+    ),
+}
+# fmt: on
+#: The knots of this run: SPLINE_KNOTS (the shipped skis' knots, the default), or DENSE_KNOTS
+#: with ``--knots dense`` (set once by ``main`` before any fit).
+KNOTS = dict(SPLINE_KNOTS)
 
 
 # --------------------------------------------------------------------------- the ski
@@ -67,27 +100,84 @@ START = {
 
 def start_vector(kind: str) -> np.ndarray:
     """The starting ski as a parameter vector: log EI [ln N m²] and the free z0 knots [mm]."""
-    _, zk, pins = SPLINE_KNOTS[kind]
+    ek, zk, _ = SPLINE_KNOTS[kind]  # START is tabulated at the default knots
     ei, z = START[kind]
+    return resampled_vector(kind, list(ek), ei, list(zk), z)
+
+
+def _pchip_fit(
+    x_new: np.ndarray, x: np.ndarray, y: np.ndarray, fixed: dict[int, float]
+) -> np.ndarray:
+    """Values at ``x_new`` whose PCHIP is closest (least squares at ``x``) to ``y``.
+
+    Starts from ``y`` interpolated at the new knots; ``fixed`` holds values kept as they are.
+    """
+    v = np.interp(x_new, x, y)
+    for k, val in fixed.items():
+        v[k] = val
+    free = [k for k in range(x_new.size) if k not in fixed]
+
+    def curve(p: np.ndarray) -> np.ndarray:
+        w = v.copy()
+        w[free] = p
+        return PchipInterpolator(x_new, w)(x) - y
+
+    v[free] = least_squares(curve, v[free]).x
+    return v
+
+
+def resampled_vector(
+    kind: str, ei_knots: list[float], ei: list[float], z_knots: list[float], z_mm: list[float]
+) -> np.ndarray:
+    """A ski at other knots (a record, the shipped ski) as a parameter vector at :data:`KNOTS`.
+
+    On the same knots the values are taken as they are. Otherwise the source curves, log EI and
+    z0 (PCHIP through the source knots, as :func:`spline_ski` interpolates them, z0 less the line
+    through the new pinned knots, which the resting on the plane undoes), are sampled every
+    5 mm, and the values at the new knots are those whose PCHIP is closest to them (least
+    squares, from the source curves at the new knots): PCHIP through values read off a PCHIP is
+    not the same curve, and a 0.06 mm change of the pocket at half weight moves the kick zone's
+    0.2 mm mark, which groups the patches into zones, by 125 mm.
+    """
+    ek, zk, pins = KNOTS[kind]
     free = [k for k in range(len(zk)) if k not in pins]
-    return np.concatenate([np.log(ei), np.array(z)[free]])
+    if tuple(ei_knots) == tuple(ek) and tuple(z_knots) == tuple(zk):
+        return np.concatenate([np.log(ei), np.array(z_mm)[free]])
+    x_tail, x_tip = SPLINE_ENDS[kind]
+    xs = np.linspace(x_tail, x_tip, round((x_tip - x_tail) / 0.005) + 1)
+    log_ei = PchipInterpolator(np.array(ei_knots), np.log(ei))(xs)
+    z = PchipInterpolator(np.array(z_knots), np.array(z_mm, dtype=float))(xs)
+    za, zb = np.interp([zk[pins[0]], zk[pins[1]]], xs, z)
+    z = z - (za + (zb - za) * (xs - zk[pins[0]]) / (zk[pins[1]] - zk[pins[0]]))
+    log_ei_k = _pchip_fit(np.array(ek), xs, log_ei, {})
+    z_k = _pchip_fit(np.array(zk), xs, z, {pins[0]: 0.0, pins[1]: 0.0})
+    return np.concatenate([log_ei_k, z_k[free]])
+
+
+def record_vector(kind: str, doc: dict) -> np.ndarray:
+    """A calibration record (JSON) as a parameter vector at :data:`KNOTS` (resampled)."""
+    return resampled_vector(
+        kind, doc["ei_knots_m"], doc["ei_n_m2"], doc["camber_knots_m"], doc["camber_mm"]
+    )
 
 
 def shipped_vector(kind: str) -> np.ndarray:
     """The shipped ski as a parameter vector.
 
-    A spline ski's tabulated knot values are used as they are; a parametric ski (version 1) is
+    A spline ski's tabulated knot values are used as they are (resampled onto other knots, see
+    :func:`resampled_vector`); a parametric ski (version 1) is
     sampled at the knots: EI at the EI knots, z0 at the camber knots less the shovel and tail
     rises that :func:`spline_ski` adds, less the line through the two pinned knots (undone by
     the resting on the plane). The sampled ski is close to, not the same as, the shipped one.
     """
     ski = get_ski(kind)
-    ek, zk, pins = SPLINE_KNOTS[kind]
+    ek, zk, pins = KNOTS[kind]
     free = [k for k in range(len(zk)) if k not in pins]
     try:
         ei = json.loads(ski.provenance.detail("ei_knots_n_m2"))
-        z = np.array(json.loads(ski.provenance.detail("camber_knots_mm")))
-        return np.concatenate([np.log(ei), z[free]])
+        z = json.loads(ski.provenance.detail("camber_knots_mm"))
+        z_knots = SPLINE_KNOTS[kind][1]  # the shipped spline skis are on the default knots
+        return resampled_vector(kind, list(ski.stiffness_x), ei, list(z_knots), z)
     except (KeyError, TypeError, ValueError):
         pass
     x = np.array(zk)
@@ -103,7 +193,7 @@ def shipped_vector(kind: str) -> np.ndarray:
 
 def unpack(kind: str, v: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """Parameter vector → (EI at the EI knots [N m²], z0 at the camber knots [m])."""
-    ek, zk, pins = SPLINE_KNOTS[kind]
+    ek, zk, pins = KNOTS[kind]
     n_e = len(ek)
     ei = np.exp(v[:n_e])
     z = np.zeros(len(zk))
@@ -125,12 +215,15 @@ def kick_zone_of(ski: Ski) -> tuple[float, float] | None:
 
 def make_ski(kind: str, v: np.ndarray) -> Ski:
     ei, z = unpack(kind, v)
-    ski = spline_ski(kind, ei, z, kick_zone=None, description="calibration candidate")
+    knots = KNOTS[kind][:2]
+    ski = spline_ski(kind, ei, z, kick_zone=None, description="calibration candidate", knots=knots)
     if kind == "classic":
         kz = kick_zone_of(ski)
         if kz is None:
             raise ValueError("no wax pocket at half body weight")
-        ski = spline_ski(kind, ei, z, kick_zone=kz, description="calibration candidate")
+        ski = spline_ski(
+            kind, ei, z, kick_zone=kz, description="calibration candidate", knots=knots
+        )
     return ski
 
 
@@ -299,7 +392,7 @@ EI_SHAPE_SCALE = math.log(1.5)  # one residual unit: a wrong-way step of a facto
 
 def ei_shape_residuals(kind: str, v: np.ndarray) -> list[float]:
     """Hinges of the EI shape: one per pair of neighbouring knots (0 when the shape holds)."""
-    n_e = len(SPLINE_KNOTS[kind][0])
+    n_e = len(KNOTS[kind][0])
     log_ei = np.asarray(v[:n_e], dtype=float)
     peak = int(np.argmax(log_ei))
     out = []
@@ -375,7 +468,7 @@ def residuals(kind: str, v: np.ndarray, opts: FitOptions, n_res: int = 1) -> np.
 
 def bounds(kind: str) -> tuple[np.ndarray, np.ndarray]:
     """The box: EI 40..30000 N m²; z0 knots [mm]: ends 0..8, glide zones -0.5..2, middle 0..20."""
-    ek, zk, pins = SPLINE_KNOTS[kind]
+    ek, zk, pins = KNOTS[kind]
     n_e = len(ek)
     free = [k for k in range(len(zk)) if k not in pins]
     lo = np.empty(n_e + len(free))
@@ -487,9 +580,9 @@ def report(kind: str, v: np.ndarray, opts: FitOptions = FitOptions()) -> dict:
     print(f"caption misfit {caption_misfit:.3f}, all within tolerance: {all(r.ok for r in rows)}")
     return {
         "ski": kind,
-        "ei_knots_m": list(SPLINE_KNOTS[kind][0]),
+        "ei_knots_m": list(KNOTS[kind][0]),
         "ei_n_m2": [round(float(e), 2) for e in ei],
-        "camber_knots_m": list(SPLINE_KNOTS[kind][1]),
+        "camber_knots_m": list(KNOTS[kind][1]),
         "camber_mm": [round(float(c) * 1e3, 4) for c in z],
         "kick_zone_m": None if ski.kick_zone is None else [round(k, 4) for k in ski.kick_zone],
         "plausibility": prac,
@@ -522,7 +615,8 @@ def write_shipped(doc: dict, path: Path) -> Path:
     rows = doc["captions"]
     n_ok = sum(r["ok"] for r in rows)
     text = (
-        f"Virtual {kind} ski, a spline ski (log EI at 10 knots, free camber at 13 knots, PCHIP; "
+        f"Virtual {kind} ski, a spline ski (log EI at {len(doc['ei_knots_m'])} knots, free "
+        f"camber at {len(doc['camber_knots_m'])} knots, PCHIP; "
         f"skisnow.ski._spline), 44 mm wide, fitted to the captions of Kalliorinne et al. (2023), "
         f"Figs. 4-7 under the practitioners' limits: {n_ok}/{len(rows)} zones within all "
         f"tolerances (`skisnow captions`). Free camber at the balance point "
@@ -636,6 +730,7 @@ def write_shipped(doc: dict, path: Path) -> Path:
     ski = spline_ski(
         kind, np.array(doc["ei_n_m2"]), np.array(doc["camber_mm"]) * 1e-3, kick_zone=kick,
         description=text, provenance=provenance,
+        knots=(doc["ei_knots_m"], doc["camber_knots_m"]),
     )  # fmt: skip
     return write_ski(ski, path)
 
@@ -685,6 +780,11 @@ def main() -> None:
     )  # fmt: skip
     ap.add_argument("--tag", default="", help="suffix of the record name, e.g. _v2")
     ap.add_argument(
+        "--knots", choices=("default", "dense"), default="default",
+        help="spline knots: the shipped skis' (default; 10 log-EI, 13 camber) or DENSE_KNOTS "
+        "(19 log-EI, 26 camber); --start records are resampled onto them (PCHIP)",
+    )  # fmt: skip
+    ap.add_argument(
         "--k-range", type=float, nargs=2, default=None, metavar=("LO", "HI"),
         help="skate stiffness k limits [N/mm] (default the team means 225 251)",
     )  # fmt: skip
@@ -699,6 +799,8 @@ def main() -> None:
         print(write_shipped(doc, SHIPPED / f"{doc['ski']}.json"))
         return
     args.out.mkdir(parents=True, exist_ok=True)
+    if args.knots == "dense":
+        KNOTS.update(DENSE_KNOTS)
     opts = FitOptions(
         plausibility=not args.caption_only,
         hinge_weight=args.hinge_weight,
@@ -722,12 +824,7 @@ def main() -> None:
             if src == "shipped":
                 starts.append(shipped_vector(kind))
                 continue
-            prev = json.loads(Path(src).read_text())
-            _, zk, pins = SPLINE_KNOTS[kind]
-            free = [k for k in range(len(zk)) if k not in pins]
-            starts.append(
-                np.concatenate([np.log(prev["ei_n_m2"]), np.array(prev["camber_mm"])[free]])
-            )
+            starts.append(record_vector(kind, json.loads(Path(src).read_text())))
         result = fit(
             kind, seed=args.seed, generations=args.generations, popsize=args.popsize,
             opts=opts, start=starts[0] if starts else None,
@@ -748,6 +845,7 @@ def main() -> None:
             "front_pressure_growth_min": opts.front_pressure_growth_min,
             "k_range_n_per_mm": list(opts.k_range_n_per_mm),
             "starts": args.start or ["START"],
+            "knots": args.knots,
             "sigma": args.sigma,
             "evaluations": result["evaluations"],
             "generations_run": result["generations_run"],

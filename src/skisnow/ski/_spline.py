@@ -11,6 +11,7 @@ plane (the lower convex hull under the balance point), as for the skis of versio
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from typing import Literal
 
 import numpy as np
@@ -49,6 +50,7 @@ def spline_ski(
     description: str = "",
     provenance: Provenance | None = None,
     name: str | None = None,
+    knots: tuple[Sequence[float], Sequence[float]] | None = None,
 ) -> Ski:
     """A ski from EI [N m²] and z0 [m] at the knots of :data:`SPLINE_KNOTS` (both PCHIP).
 
@@ -57,15 +59,20 @@ def spline_ski(
     kind
         ``'classic'`` or ``'skate'`` (selects knots and ends).
     stiffness
-        EI [N m²] at the 10 stiffness knots.
+        EI [N m²] at the stiffness knots (10 of :data:`SPLINE_KNOTS`).
     camber
-        Running-surface height [m] at the 13 camber knots, before the shovel and tail rises.
+        Running-surface height [m] at the camber knots (13 of :data:`SPLINE_KNOTS`), before
+        the shovel and tail rises.
     kick_zone
         (start, end) [m] of the kick zone (classic) or ``None``.
     description, provenance, name
         Stored with the ski (``name`` defaults to ``kind``).
+    knots
+        (stiffness knots, camber knots) [m] from the balance point instead of those of
+        :data:`SPLINE_KNOTS` (the denser knots of ``benchmarks/calibrate_skis.py --knots
+        dense``); within the running surface of ``kind``, its ends as first and last knots.
     """
-    ek, zk, _ = SPLINE_KNOTS[kind]
+    ek, zk = SPLINE_KNOTS[kind][:2] if knots is None else knots
     x_tail, x_tip = SPLINE_ENDS[kind]
     x = np.round(np.linspace(x_tail, x_tip, round((x_tip - x_tail) / 0.005) + 1), 6)
     z = PchipInterpolator(np.array(zk), np.asarray(camber, dtype=float))(x)
