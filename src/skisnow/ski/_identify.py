@@ -50,8 +50,9 @@ unilateral contact with the rigid stone, loaded by m·g through the boot plate a
   fits sit in a local minimum of the exact-contact misfit with the heaviest load's contact
   under the foot at the wrong node, in a stretch where the measured profile lies within the
   noise of the stone. The smoothed contact is restarted at the stalled fit (ε = 3 → 0.1 µm, a
-  smoothing method for the complementarity, Chen & Mangasarian 1996), then the exact contact
-  again, the lower misfit kept (:mod:`skisnow.ski._identify_fit`, stage 5).
+  smoothing method for the complementarity, Chen & Mangasarian 1996, then on to 1 nm while the
+  smoothed stone differs from the exact contact by more than the noise at the polished point),
+  then the exact contact again, the lower misfit kept (:mod:`skisnow.ski._identify_fit`, stage 5).
 * Optimiser: Levenberg–Marquardt on the normal equations (Marquardt 1963) with the exact
   Jacobian, halving a rejected step along its direction before raising the damping (a kink of
   the contact set), and a stop when the Gauss–Newton step would lower the σ-normalised sum of
