@@ -667,8 +667,10 @@ def write_shipped(doc: dict, path: Path) -> Path:
         if pr["k_n_per_mm"] > hi - 0.01 * (hi - lo):
             text += (
                 f" BINDING: k sits at its upper limit ({pr['k_n_per_mm']:.0f} N/mm); the "
-                "captions alone pull it far higher (a caption-only fit: k about 2700 N/mm, "
-                "1.5 mm free camber), so this plausible ski misses most caption numbers."
+                "captions alone pull it far higher (calibration_skate_caption_only_v2.json: "
+                "all six caption zones within tolerance at k about 6200 N/mm and 0.6 mm free "
+                "camber, not open at full weight; with k up to 550 or 700 N/mm 2 of 6 zones), "
+                "so this plausible ski misses most caption numbers."
             )
     if doc.get("findings"):
         topo = doc["topology"]
