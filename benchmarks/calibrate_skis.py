@@ -404,13 +404,17 @@ def ei_shape_residuals(kind: str, v: np.ndarray) -> list[float]:
     return out
 
 
-def caption_residuals(ski: Ski, solved: list | None = None) -> tuple[list[float], list]:
+def caption_residuals(
+    ski: Ski, solved: list | None = None, layout: list | None = None
+) -> tuple[list[float], list]:
     """Residuals in tolerance units, a fixed number per ski (for the least-squares polish).
 
-    ``solved``, if given, receives (case, zones) of every caption case of the ski.
+    ``solved``, if given, receives (case, zones) of every caption case of the ski; ``layout``,
+    if given, (case label, zone name, slice of the zone's residuals) of every zone.
     """
     res: list[float] = []
     rows = []
+    starts: list[tuple[str, str, int]] = []  # (case label, zone, first residual) of each zone
     for case in CAPTIONS:
         if case.ski != ski.kind:
             continue
@@ -421,6 +425,7 @@ def caption_residuals(ski: Ski, solved: list | None = None) -> tuple[list[float]
         stated = {z.zone: z for z in case.zones}
         for name in ("rear", "middle", "front"):
             got, paper = zones[name], stated.get(name)
+            starts.append((case.label, name, len(res)))
             if paper is None:  # a zone the paper does not have must stay empty
                 res.append(PATCH_PENALTY if got.patches else 0.0)
                 continue
@@ -435,6 +440,9 @@ def caption_residuals(ski: Ski, solved: list | None = None) -> tuple[list[float]
                 res.append(PATCH_PENALTY * min(abs(got.patches - want), 2))
             else:
                 res.append(0.0)
+    if layout is not None:
+        ends = [i for *_, i in starts[1:]] + [len(res)]
+        layout.extend((c, z, slice(i, j)) for (c, z, i), j in zip(starts, ends, strict=True))
     return res, rows
 
 

@@ -28,39 +28,19 @@ from scipy.optimize import least_squares
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import calibrate_skis as cs
 
-from skisnow.paper import CAPTIONS, solve_caption_case
 
-
-def zone_slices(kind: str) -> list[tuple[str, str, slice]]:
-    """(case, zone, residual indices) in the order of ``calibrate_skis.caption_residuals``."""
-    out, i = [], 0
-    for case in CAPTIONS:
-        if case.ski != kind:
-            continue
-        stated = {z.zone: z for z in case.zones}
-        for name in ("rear", "middle", "front"):
-            paper = stated.get(name)
-            n = 1 if paper is None else 3 + (paper.load_share is not None)
-            out.append((case.label, name, slice(i, i + n)))
-            i += n
-    return out
-
-
-def table(kind: str, v: np.ndarray) -> tuple[float, list[dict]]:
-    """Caption misfit and the rows (errors, ok) of a parameter vector."""
+def table(kind: str, v: np.ndarray, solved: list | None = None) -> tuple[float, list[dict]]:
+    """Caption misfit and the rows (errors, ok) of a parameter vector (``solved`` as in
+    ``calibrate_skis.caption_residuals``)."""
     ski = cs.make_ski(kind, v)
-    res, rows = cs.caption_residuals(ski)
+    res, rows = cs.caption_residuals(ski, solved)
     return float(np.sum(np.square(res))), [r.as_dict() | {"ok": r.ok} for r in rows]
 
 
-def zone_middles(kind: str, v: np.ndarray) -> dict[str, dict[str, float]]:
-    """Middle [mm] of every zone's extent (first to last contact), per caption case."""
-    ski = cs.make_ski(kind, v)
+def zone_middles(solved: list) -> dict[str, dict[str, float]]:
+    """Middle [mm] of every zone's extent (first to last contact), per solved caption case."""
     out = {}
-    for case in CAPTIONS:
-        if case.ski != kind:
-            continue
-        zones = solve_caption_case(case, ski)
+    for case, zones in solved:
         out[case.label] = {
             n: round(0.5 * (zones[n].start + zones[n].end) * 1e3, 0)
             for n in ("rear", "middle", "front")
@@ -102,14 +82,16 @@ def main() -> None:
     lo, hi = cs.bounds(kind)
     u0 = np.clip((v0 - lo) / (hi - lo), 0.0, 1.0)
     v0 = lo + (hi - lo) * u0
-    misfit, rows = table(kind, v0)
+    solved: list = []
+    misfit, rows = table(kind, v0, solved)
     n_ok = sum(d["ok"] for d in rows)
     n_e, n_z = len(doc["ei_knots_m"]), len(doc["camber_knots_m"])
     print(f"{args.record.name}: {n_e} log-EI + {n_z} camber knots, caption misfit "
           f"{misfit:.1f}, {n_ok}/{len(rows)} zones within")  # fmt: skip
     print(f"  out: {brief(rows)}")
-    print(f"  zone centres [mm]: {json.dumps(zone_middles(kind, v0))}")
-    slices = zone_slices(kind)
+    print(f"  zone centres [mm]: {json.dumps(zone_middles(solved))}")
+    slices: list = []  # where each zone's residuals stand, from the residuals themselves
+    cs.caption_residuals(cs.make_ski(kind, v0), layout=slices)
     n_res = cs.residuals(kind, v0, cs.FitOptions(plausibility=False)).size
     for d in rows:
         if d["ok"]:
