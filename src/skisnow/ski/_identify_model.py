@@ -15,15 +15,16 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 from scipy.interpolate import BSpline
-from scipy.linalg import solveh_banded
 from scipy.sparse import csr_matrix
 
 from skisnow._errors import ConvergenceError
+from skisnow.ski._banded_kernel import banded_cholesky, banded_solve
 from skisnow.ski._fem import (
     _GAUSS4_W,
     _GAUSS4_X,
@@ -110,6 +111,39 @@ def _second_differences(n: int) -> NDArray[np.float64]:
 # --------------------------------------------------------------------------- the model
 
 
+class _Beam:
+    """The clamped beam at one point of the fit: banded stiffness ``ab`` (upper storage), its
+    Cholesky factor and EI at the Gauss points; on first use the flexibility of every DOF under
+    a unit nodal force at each node (``flex_full``, 2n × n) and of the translations (``flex``,
+    symmetrised), and the deflection under each case's boot load (``u_boot``, 2n × cases)."""
+
+    def __init__(self, problem: _Problem, theta_e: NDArray[np.float64]) -> None:
+        self.problem = problem
+        self.ab, self.ei_q = problem._stiffness(theta_e)
+        self.factor = banded_cholesky(self.ab)
+
+    @cached_property
+    def flex_full(self) -> NDArray[np.float64]:
+        n, clamp = self.problem.n, self.problem.clamp
+        rhs = np.zeros((2 * n, n))
+        rhs[2 * np.arange(n), np.arange(n)] = 1.0
+        rhs[2 * clamp, clamp] = 0.0
+        return banded_solve(self.factor, rhs)
+
+    @cached_property
+    def flex(self) -> NDArray[np.float64]:
+        flex = self.flex_full[0::2, :]
+        return 0.5 * (flex + flex.T)
+
+    @cached_property
+    def u_boot(self) -> NDArray[np.float64]:
+        pr = self.problem
+        if not pr.cases:
+            return np.zeros((2 * pr.n, 0))
+        f_all = np.stack([pr._clamp(c.f_boot) for c in pr.cases], axis=1)
+        return banded_solve(self.factor, f_all)
+
+
 class _Problem:
     """The bench sequence and the discretised beam; evaluates residuals and their Jacobian."""
 
@@ -165,6 +199,7 @@ class _Problem:
         #: (u, a, b) of the last contact solution of each case
         self.last_state: list[tuple[NDArray[np.float64], float, float] | None] = [None] * len(cases)
         self.n_data = int(sum(c.x.size for c in cases))
+        self._beam_cache: list[tuple[bytes, _Beam]] = []
 
     # -- parameters
     def split(self, p: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
@@ -194,6 +229,20 @@ class _Problem:
         f[2 * self.clamp : 2 * self.clamp + 2] = 0.0
         return f
 
+    def beam(self, theta_e: NDArray[np.float64]) -> _Beam:
+        """The clamped beam of the (clipped) log-EI coefficients ``theta_e``: stiffness, its
+        factor, the flexibility and the deflections under every case's boot load. Kept for the
+        last two points: the fit evaluates each accepted point twice (residuals, then with the
+        Jacobian), and the smoothed contact falls back to the exact one case by case at one
+        point. The same numbers as computed afresh."""
+        key = theta_e.tobytes()
+        for k, beam in self._beam_cache:
+            if k == key:
+                return beam
+        beam = _Beam(self, theta_e)
+        self._beam_cache = [(key, beam), *self._beam_cache[:1]]
+        return beam
+
     def evaluate(
         self, p: NDArray[np.float64], *, jacobian: bool, cases: Sequence[int] | None = None
     ) -> tuple[NDArray[np.float64], NDArray[np.float64] | None]:
@@ -201,22 +250,15 @@ class _Problem:
         Jacobian (rows of all bins, columns of p) if asked."""
         theta_e, theta_z = self.split(p)
         theta_e = np.clip(theta_e, -10.0, 25.0)  # coefficients of log EI: no overflow
-        ab, ei_q = self._stiffness(theta_e)
+        beam = self.beam(theta_e)
+        ei_q, factor, flex_full, flex = beam.ei_q, beam.factor, beam.flex_full, beam.flex
         n = self.n
-        rhs = np.zeros((2 * n, n))
-        rhs[2 * np.arange(n), np.arange(n)] = 1.0
-        rhs[2 * self.clamp, self.clamp] = 0.0
-        flex_full = solveh_banded(ab, rhs, check_finite=False)
-        flex = flex_full[0::2, :]
-        flex = 0.5 * (flex + flex.T)
         z0n = self.phi_z_nodes @ theta_z
         idx_cases = range(len(self.cases)) if cases is None else cases
         res_parts, jac_parts = [], []
-        f_all = np.stack([self._clamp(self.cases[k].f_boot) for k in idx_cases], axis=1)
-        u_boot_all = solveh_banded(ab, f_all, check_finite=False)
-        for col, k in enumerate(idx_cases):
+        for k in idx_cases:
             c = self.cases[k]
-            u_boot = u_boot_all[:, col]
+            u_boot = beam.u_boot[:, k]
             g = z0n + u_boot[0::2]
             href = max(float(np.ptp(z0n)), 1e-3)
             lcp = BeamLcp(flex=flex, g=g, x=self.nodes, f_total=c.f_total, m_total=c.m_total,
@@ -271,7 +313,7 @@ class _Problem:
             g_mat[: 2 * n - 2] += contrib[:, 0:2, :].reshape(2 * n - 2, self.n_e)
             g_mat[2:] += contrib[:, 2:4, :].reshape(2 * n - 2, self.n_e)
             g_mat[2 * self.clamp : 2 * self.clamp + 2] = 0.0
-            v = solveh_banded(ab, g_mat, check_finite=False)  # K^-1 dK u  (2n, nE)
+            v = banded_solve(factor, g_mat)  # K^-1 dK u  (2n, nE)
             rhs_e = np.zeros((na + 2, self.n_e))
             rhs_e[:na] = v[2 * act]
             phi_za = self.q_z_nodes[act]  # (na, nφ)

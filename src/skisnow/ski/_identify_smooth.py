@@ -37,10 +37,10 @@ from collections.abc import Sequence
 
 import numpy as np
 from numpy.typing import NDArray
-from scipy.linalg import solveh_banded
 from scipy.special import expit, spence
 
 from skisnow._errors import ConvergenceError
+from skisnow.ski._banded_kernel import solveh_banded_fused
 from skisnow.ski._identify_model import _Problem
 
 __all__ = ["SmoothedBench"]
@@ -93,7 +93,8 @@ class SmoothedBench:
         pr = self.problem
         theta_e, theta_z = pr.split(p)
         theta_e = np.clip(theta_e, -10.0, 25.0)
-        ab, ei_q = pr._stiffness(theta_e)
+        beam = pr.beam(theta_e)
+        ab, ei_q = beam.ab, beam.ei_q
         n, cl = pr.n, pr.clamp
         x = pr.nodes
         z0n = pr.phi_z_nodes @ theta_z
@@ -228,7 +229,7 @@ class SmoothedBench:
         cmat[2 * np.flatnonzero(free), 0] = d[free]
         cmat[2 * np.flatnonzero(free), 1] = d[free] * x[free]
         m = rhs_u.shape[1]
-        y = solveh_banded(hess, np.concatenate([rhs_u, cmat], axis=1), check_finite=False)
+        y = solveh_banded_fused(hess, np.concatenate([rhs_u, cmat], axis=1))
         yr, yc = y[:, :m], y[:, m:]
         s0 = np.array([[d.sum(), d @ x], [d @ x, d @ (x * x)]])
         schur = s0 - cmat.T @ yc
