@@ -125,9 +125,9 @@ def banded_cholesky(ab: NDArray[np.float64]) -> NDArray[np.float64]:
 def banded_solve(u: NDArray[np.float64], b: NDArray[np.float64]) -> NDArray[np.float64]:
     """K⁻¹ b for the factor ``u`` of :func:`banded_cholesky`; ``b`` of shape (n,) or (n, m)
     (the solution in Fortran order, as LAPACK returns it)."""
-    x = np.array(b, dtype=np.float64, order="C", copy=True)
-    _solve(u, x.reshape(x.shape[0], -1))
-    return np.asfortranarray(x)
+    x = np.array(b, dtype=np.float64, order="F", copy=True)
+    _solve(u, x.reshape(x.shape[0], -1, order="F"))
+    return x
 
 
 def solveh_banded_fused(ab: NDArray[np.float64], b: NDArray[np.float64]) -> NDArray[np.float64]:
