@@ -38,6 +38,11 @@ def test_solution_equals_scipy(columns: int) -> None:
         # one column at a time is the same as all at once, and a vector as a column
         u = banded_cholesky(ab)
         np.testing.assert_array_equal(banded_solve(u, b[:, 0]), x[:, 0])
+        # in place in a Fortran-ordered right-hand side: the same numbers
+        bf = np.asfortranarray(b)
+        xf = banded_solve(u, bf, overwrite_b=True)
+        assert xf is bf
+        np.testing.assert_array_equal(xf, x)
 
 
 def test_factor_is_cholesky() -> None:

@@ -122,10 +122,16 @@ def banded_cholesky(ab: NDArray[np.float64]) -> NDArray[np.float64]:
     return u
 
 
-def banded_solve(u: NDArray[np.float64], b: NDArray[np.float64]) -> NDArray[np.float64]:
+def banded_solve(
+    u: NDArray[np.float64], b: NDArray[np.float64], *, overwrite_b: bool = False
+) -> NDArray[np.float64]:
     """K⁻¹ b for the factor ``u`` of :func:`banded_cholesky`; ``b`` of shape (n,) or (n, m)
-    (the solution in Fortran order, as LAPACK returns it)."""
-    x = np.array(b, dtype=np.float64, order="F", copy=True)
+    (the solution in Fortran order, as LAPACK returns it; in ``b`` itself if ``overwrite_b``
+    and ``b`` is a Fortran-ordered float64 array)."""
+    if overwrite_b and b.dtype == np.float64 and b.flags.f_contiguous and b.flags.writeable:
+        x = b
+    else:
+        x = np.array(b, dtype=np.float64, order="F", copy=True)
     _solve(u, x.reshape(x.shape[0], -1, order="F"))
     return x
 

@@ -125,10 +125,10 @@ class _Beam:
     @cached_property
     def flex_full(self) -> NDArray[np.float64]:
         n, clamp = self.problem.n, self.problem.clamp
-        rhs = np.zeros((2 * n, n))
+        rhs = np.zeros((2 * n, n), order="F")
         rhs[2 * np.arange(n), np.arange(n)] = 1.0
         rhs[2 * clamp, clamp] = 0.0
-        return banded_solve(self.factor, rhs)
+        return banded_solve(self.factor, rhs, overwrite_b=True)
 
     @cached_property
     def flex(self) -> NDArray[np.float64]:

@@ -40,7 +40,7 @@ from numpy.typing import NDArray
 from scipy.special import expit, spence
 
 from skisnow._errors import ConvergenceError
-from skisnow.ski._banded_kernel import solveh_banded_fused
+from skisnow.ski._banded_kernel import banded_cholesky, banded_solve
 from skisnow.ski._identify_model import _Problem
 
 __all__ = ["SmoothedBench"]
@@ -134,19 +134,20 @@ class SmoothedBench:
             kappa = np.einsum("eqa,ea->eq", pr.bq, ue)
             coef = pr.wq * ei_q * kappa
             contrib = np.einsum("eq,eqa,eqj->eaj", coef, pr.bq, pr.phi_q)  # (n_el, 4, nE)
-            g_e = np.zeros((2 * n, pr.n_e))
-            g_e[: 2 * n - 2] += contrib[:, 0:2, :].reshape(2 * n - 2, pr.n_e)
-            g_e[2:] += contrib[:, 2:4, :].reshape(2 * n - 2, pr.n_e)
-            g_e[2 * cl : 2 * cl + 2] = 0.0
+            # the right-hand side -[dK/dθ_E u, E D Q] built in place (Fortran order, two
+            # trailing columns left for the bordered solve's C)
+            n_e, n_p = pr.n_e, pr.n_e + pr.n_z - 2
+            rhs_u = np.zeros((2 * n, n_p + 2), order="F")
+            rhs_u[: 2 * n - 2, :n_e] += contrib[:, 0:2, :].reshape(2 * n - 2, n_e)
+            rhs_u[2:, :n_e] += contrib[:, 2:4, :].reshape(2 * n - 2, n_e)
             dq = d[:, None] * pr.q_z_nodes  # (n, nφ)
-            g_z = np.zeros((2 * n, pr.n_z - 2))
-            g_z[trans] = dq
-            g_z[2 * cl : 2 * cl + 2] = 0.0
-            rhs_u = -np.concatenate([g_e, g_z], axis=1)
+            rhs_u[trans, n_e:n_p] = dq
+            rhs_u[2 * cl : 2 * cl + 2] = 0.0
+            np.negative(rhs_u, out=rhs_u)
             rhs_ab = -np.concatenate(
                 [np.zeros((2, pr.n_e)), np.stack([dq.sum(axis=0), x @ dq])], axis=1
             )
-            du, da, db = self._solve(hess, d, free, rhs_u, rhs_ab)
+            du, da, db = self._solve(hess, d, free, rhs_u, rhs_ab, room=True)
             dh = c.hermite @ du + da[None, :] + c.x[:, None] * db[None, :]
             dh[:, pr.n_e :] += pr.q_z_cases[k]
             jac.append((c.w / pr.sigma)[:, None] * dh)
@@ -219,17 +220,26 @@ class SmoothedBench:
             u, a, b = u + alpha * su, a + alpha * sa, b + alpha * sb
         return None
 
-    def _solve(self, hess, d, free, rhs_u, rhs_ab):
+    def _solve(self, hess, d, free, rhs_u, rhs_ab, room=False):
         """Solve the bordered system [[A, C], [Cᵀ, S0]] [y; (a, b)] = [rhs_u; rhs_ab] with A
-        banded (clamped stiffness + foundation) and C = E D [1, x] (Schur complement)."""
+        banded (clamped stiffness + foundation) and C = E D [1, x] (Schur complement).
+        ``room``: ``rhs_u`` is a Fortran-ordered array with two trailing columns to spare,
+        overwritten by C and the solution (no copy of a Jacobian's right-hand sides)."""
         pr = self.problem
         x = pr.nodes
         n = pr.n
         cmat = np.zeros((2 * n, 2))
         cmat[2 * np.flatnonzero(free), 0] = d[free]
         cmat[2 * np.flatnonzero(free), 1] = d[free] * x[free]
-        m = rhs_u.shape[1]
-        y = solveh_banded_fused(hess, np.concatenate([rhs_u, cmat], axis=1))
+        if room:
+            m = rhs_u.shape[1] - 2
+            b = rhs_u
+        else:
+            m = rhs_u.shape[1]
+            b = np.empty((2 * n, m + 2), order="F")
+            b[:, :m] = rhs_u
+        b[:, m:] = cmat
+        y = banded_solve(banded_cholesky(hess), b, overwrite_b=True)
         yr, yc = y[:, :m], y[:, m:]
         s0 = np.array([[d.sum(), d @ x], [d @ x, d @ (x * x)]])
         schur = s0 - cmat.T @ yc
