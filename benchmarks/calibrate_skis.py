@@ -391,16 +391,27 @@ EI_SHAPE_SCALE = math.log(1.5)  # one residual unit: a wrong-way step of a facto
 
 
 def ei_shape_residuals(kind: str, v: np.ndarray) -> list[float]:
-    """Hinges of the EI shape: one per pair of neighbouring knots (0 when the shape holds)."""
-    n_e = len(KNOTS[kind][0])
+    """Hinges of the EI shape: one per pair of neighbouring knots (0 when the shape holds).
+
+    Unimodal over every knot of the run; the step limit EI_STEP_MAX holds between neighbouring
+    knots of the shipped skis' SPLINE_KNOTS, a subset of DENSE_KNOTS, so that ``--knots dense``
+    asks the same of EI(x) as the default knots (a limit per knot of the run would allow up to
+    EI_STEP_MAX² per default spacing). The jump of a default pair is added to the residual of its
+    first pair of run knots; on the default knots this is the residual of each pair as before.
+    """
+    knots = KNOTS[kind][0]
+    n_e = len(knots)
     log_ei = np.asarray(v[:n_e], dtype=float)
+    coarse = [knots.index(x) for x in SPLINE_KNOTS[kind][0]]  # ValueError if not a subset
+    jumps = dict.fromkeys(range(n_e - 1), 0.0)
+    for a, b in zip(coarse[:-1], coarse[1:]):
+        jumps[a] = max(0.0, abs(log_ei[b] - log_ei[a]) - math.log(EI_STEP_MAX))
     peak = int(np.argmax(log_ei))
     out = []
     for i in range(n_e - 1):
         step = log_ei[i + 1] - log_ei[i]  # > 0: rising towards the tip
         wrong = max(0.0, -step) if i < peak else max(0.0, step)
-        jump = max(0.0, abs(step) - math.log(EI_STEP_MAX))
-        out.append((wrong + jump) / EI_SHAPE_SCALE)
+        out.append((wrong + jumps[i]) / EI_SHAPE_SCALE)
     return out
 
 
