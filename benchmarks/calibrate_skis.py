@@ -308,22 +308,29 @@ class FitOptions:
     share_change: bool = False
 
 
-def plausibility_residuals(kind: str, prac: dict[str, float], opts: FitOptions) -> list[float]:
-    """Hinge residuals (0 inside the practitioners' ranges; sources in ``_skis.py``)."""
+def hinge_limits(
+    kind: str, opts: FitOptions
+) -> list[tuple[str, float | None, float | None, float]]:
+    """The practitioners' limits as (metric key, lower, upper, scale); sources in ``_skis.py``."""
     if kind == "classic":
         return [
-            _hinge(prac["camber_half_mm"], 0.6, 1.2, 0.05),
-            _hinge(prac["camber_full_mm"], None, 0.07, 0.01),
-            _hinge(prac["h_50kg_mm"], 0.12, None, 0.01),
-            _hinge(prac["pocket_01_half_mm"], 450, 560, 15),
-            _hinge(prac["free_camber_mm"], None, 15.0, 1.0),
+            ("camber_half_mm", 0.6, 1.2, 0.05),
+            ("camber_full_mm", None, 0.07, 0.01),
+            ("h_50kg_mm", 0.12, None, 0.01),
+            ("pocket_01_half_mm", 450, 560, 15),
+            ("free_camber_mm", None, 15.0, 1.0),
         ]
     return [
-        _hinge(prac["k_n_per_mm"], *opts.k_range_n_per_mm, 5),
-        _hinge(prac["camber_full_mm"], 1.2, None, 0.05),
-        _hinge(prac["h_130kg_mm"], 0.15, None, 0.02),
-        _hinge(prac["free_camber_mm"], None, 15.0, 1.0),
+        ("k_n_per_mm", *opts.k_range_n_per_mm, 5),
+        ("camber_full_mm", 1.2, None, 0.05),
+        ("h_130kg_mm", 0.15, None, 0.02),
+        ("free_camber_mm", None, 15.0, 1.0),
     ]
+
+
+def plausibility_residuals(kind: str, prac: dict[str, float], opts: FitOptions) -> list[float]:
+    """Hinge residuals (0 inside the practitioners' ranges of :func:`hinge_limits`)."""
+    return [_hinge(prac[key], lo, hi, scale) for key, lo, hi, scale in hinge_limits(kind, opts)]
 
 
 def topology(ski: Ski, solved: list) -> dict[str, float]:
@@ -665,14 +672,39 @@ def write_shipped(doc: dict, path: Path) -> Path:
             f" Kick zone {a * 1e3:.0f} .. {b * 1e3:.0f} mm (0.2 mm rear and 0.1 mm front marks "
             "at half body weight)."
         )
+    k_range = doc.get("k_range_n_per_mm")
+    limits = hinge_limits(kind, FitOptions(k_range_n_per_mm=tuple(k_range or (225.0, 251.0))))
+
+    def _range(lo: float | None, hi: float | None) -> str:
+        return (
+            f"{lo:g}-{hi:g}"
+            if lo is not None and hi is not None
+            else (f">= {lo:g}" if lo is not None else f"<= {hi:g}")
+        )
+
+    missed = [
+        f"{key} {pr[key]:.4g} (limit {_range(lo, hi)})"
+        for (key, lo, hi, _), h in zip(limits, doc["hinge_residuals"], strict=True)
+        if h > 0
+    ]
+    if missed:
+        text += f" Practitioners' limits not met exactly: {'; '.join(missed)}."
     if doc.get("ei_shape_weight"):
         log_ei = np.log(np.array(doc["ei_n_m2"]))
         peak = int(np.argmax(log_ei))
-        step = float(np.exp(np.max(np.abs(np.diff(log_ei)))))
+        # the step limit acts between neighbouring knots of the default SPLINE_KNOTS
+        # (ei_shape_residuals), a subset of the record's knots
+        coarse = [
+            i
+            for i, x in enumerate(doc["ei_knots_m"])
+            if any(abs(x - c) < 1e-9 for c in SPLINE_KNOTS[kind][0])
+        ]
+        step = float(np.exp(np.max(np.abs(np.diff(log_ei[coarse])))))
         text += (
             f" EI(x) fitted under shape limits (one peak, neighbouring knots within "
             f"{EI_STEP_MAX:g}x; chosen, not sourced): peak {doc['ei_n_m2'][peak]:.0f} N m² at "
-            f"{doc['ei_knots_m'][peak] * 1e3:+.0f} mm, largest neighbour step {step:.1f}x."
+            f"{doc['ei_knots_m'][peak] * 1e3:+.0f} mm, largest step between neighbouring "
+            f"default knots {step:.1f}x."
         )
         wrong = [
             float(np.exp(abs(d)))
@@ -684,7 +716,6 @@ def write_shipped(doc: dict, path: Path) -> Path:
                 f" The shape limit is not met exactly: {len(wrong)} wrong-way step(s), largest "
                 f"{(max(wrong) - 1) * 100:.1f} %."
             )
-    k_range = doc.get("k_range_n_per_mm")
     if kind == "skate" and k_range:
         lo, hi = k_range
         text += (
@@ -754,7 +785,9 @@ def write_shipped(doc: dict, path: Path) -> Path:
             ("caption_misfit", round(float(doc["caption_misfit"]), 3)),
             ("caption_zones_within_tolerance", f"{n_ok}/{len(rows)}"),
             ("k_n_per_mm", round(float(pr["k_n_per_mm"]), 1)),
-            ("k_range_n_per_mm", json.dumps(doc.get("k_range_n_per_mm"))),
+            *(
+                (("k_range_n_per_mm", json.dumps(k_range)),) if kind == "skate" else ()
+            ),  # the classic has no k limit
             ("findings_residuals", bool(doc.get("findings", False))),
             ("front_pressure_growth_min", float(doc.get("front_pressure_growth_min", 0.0))),
             ("ei_knots_n_m2", json.dumps(doc["ei_n_m2"])),
