@@ -285,7 +285,7 @@ def test_refinement_converges() -> None:
     assert np.abs(np.array(shares[:-1]) - shares[-1]).max() < 0.01
 
 
-def test_flexible_departs_from_rigid_on_soft_snow_and_not_on_stone() -> None:
+def test_flexible_departs_from_rigid_on_soft_snow() -> None:
     # The classic, 60 kg at −70 mm: on 20 MPa the kick zone carries much less of the load when
     # the ski bends on the snow (a dense reference reported 48 % rigid against 30 % flexible).
     ski = get_ski("classic")
@@ -294,21 +294,61 @@ def test_flexible_departs_from_rigid_on_soft_snow_and_not_on_stone() -> None:
     edges = np.linspace(ski.x_tail, ski.x_tip, n + 1)
     x = 0.5 * (edges[1:] + edges[:-1])
     h = solve_beam(ski, mass=60.0, load_position=-0.07).sample(x)
-    for e_snow, expect_close in ((20e6, False), (None, True)):
-        e = effective_modulus(snow(e_snow)) if e_snow else 1e13
+    e = effective_modulus(snow(20e6))
+    rigid = contact_zones(
+        solve_contact(x, h, load=load, load_position=-0.07, modulus=e, width=ski.width),
+        kick_zone=ski.kick_zone,
+    )
+    flex = contact_zones(
+        solve_flexible_ski(ski, load=load, load_position=-0.07, modulus=e, n_points=n).contact,
+        kick_zone=ski.kick_zone,
+    )
+    assert rigid.kick.load_share > 0.4 and flex.kick.load_share < 0.35
+
+
+@pytest.mark.parametrize(("mass", "position"), [(60, -0.07), (30, -0.07), (30, -0.12), (60, -0.21)])
+def test_on_stone_the_flexible_ski_is_the_beam_on_the_plane(mass: float, position: float) -> None:
+    """On a (nearly) rigid counter-surface the flexible ski must carry its load where the beam
+    pressed on the rigid plane has its reactions (the same beam, the same unilateral contact):
+    zone load shares within 1 point. The paper's rigid pipeline (the beam's loaded profile as
+    a rigid body on the half-space) agrees with them only where the beam touches in one run of
+    nodes in each glide zone and none between: with more contacts the rigid body on the stone
+    is statically indeterminate and the half-space's compliance, not the beam, sets the split
+    (the shipped classic of version 2 at 30 kg / −70 mm touches at four points: beam and
+    flexible 50/50, rigid pipeline 57/43)."""
+    ski = get_ski("classic")
+    n = 1024
+    load = mass * STANDARD_GRAVITY
+    beam = solve_beam(ski, mass=mass, load_position=position)
+    bx, r = np.asarray(beam.x), np.asarray(beam.reactions)
+    k0, k1 = ski.kick_zone
+    beam_shares = np.array([r[bx < k0].sum(), r[(bx >= k0) & (bx <= k1)].sum(), r[bx > k1].sum()])
+    beam_shares /= load
+    flex = contact_zones(
+        solve_flexible_ski(
+            ski, load=load, load_position=position, modulus=1e13, n_points=n
+        ).contact,
+        kick_zone=ski.kick_zone,
+    )
+    flex_shares = np.array([flex.rear.load_share, flex.kick.load_share, flex.front.load_share])
+    np.testing.assert_allclose(flex_shares, beam_shares, atol=0.01)
+    runs = beam.contact_intervals
+    in_zone = [
+        sum(1 for a, b in runs if lo <= 0.5 * (a + b) <= hi)
+        for lo, hi in ((-np.inf, k0), (k0, k1), (k1, np.inf))
+    ]
+    if in_zone == [1, 0, 1]:  # determinate: two contact runs for two rigid-body freedoms
+        edges = np.linspace(ski.x_tail, ski.x_tip, n + 1)
+        x = 0.5 * (edges[1:] + edges[:-1])
         rigid = contact_zones(
-            solve_contact(x, h, load=load, load_position=-0.07, modulus=e, width=ski.width),
+            solve_contact(
+                x, beam.sample(x), load=load, load_position=position, modulus=1e13,
+                width=ski.width,
+            ),
             kick_zone=ski.kick_zone,
-        )
-        flex = contact_zones(
-            solve_flexible_ski(ski, load=load, load_position=-0.07, modulus=e, n_points=n).contact,
-            kick_zone=ski.kick_zone,
-        )
-        gap_share = abs(rigid.kick.load_share - flex.kick.load_share)
-        if expect_close:
-            assert gap_share < 0.01
-        else:
-            assert rigid.kick.load_share > 0.4 and flex.kick.load_share < 0.35
+        )  # fmt: skip
+        rigid_shares = [rigid.rear.load_share, rigid.kick.load_share, rigid.front.load_share]
+        np.testing.assert_allclose(rigid_shares, beam_shares, atol=0.01)
 
 
 # ---- bad input ------------------------------------------------------------------------------
