@@ -867,10 +867,15 @@ def main() -> None:
         "--write-shipped", type=Path, default=None,
         help="write the ski of this calibration record as the shipped ski file",
     )  # fmt: skip
+    ap.add_argument(
+        "--ski-out", type=Path, default=None,
+        help="with --write-shipped: write the ski file here instead (a candidate to try with "
+        "--ski FILE before it ships)",
+    )  # fmt: skip
     args = ap.parse_args()
     if args.write_shipped is not None:
         doc = json.loads(args.write_shipped.read_text())
-        print(write_shipped(doc, SHIPPED / f"{doc['ski']}.json"))
+        print(write_shipped(doc, args.ski_out or SHIPPED / f"{doc['ski']}.json"))
         return
     args.out.mkdir(parents=True, exist_ok=True)
     if args.knots == "dense":
