@@ -398,6 +398,21 @@ EI_STEP_MAX = 8.0
 EI_SHAPE_SCALE = math.log(1.5)  # one residual unit: a wrong-way step of a factor 1.5
 
 
+def default_knot_indices(kind: str, knots) -> list[int]:  # type: ignore[no-untyped-def]
+    """Where the log-EI knots of SPLINE_KNOTS (the shipped skis') sit among ``knots``.
+
+    The EI step limit acts between these; ``--knots dense`` holds them as a subset. Raises
+    ``ValueError`` when a default knot is missing.
+    """
+    out = []
+    for c in SPLINE_KNOTS[kind][0]:
+        hits = [i for i, x in enumerate(knots) if abs(x - c) < 1e-9]
+        if not hits:
+            raise ValueError(f"knot {c} m of SPLINE_KNOTS[{kind!r}] is not among the knots")
+        out.append(hits[0])
+    return out
+
+
 def ei_shape_residuals(kind: str, v: np.ndarray) -> list[float]:
     """Hinges of the EI shape: one per pair of neighbouring knots (0 when the shape holds).
 
@@ -410,7 +425,7 @@ def ei_shape_residuals(kind: str, v: np.ndarray) -> list[float]:
     knots = KNOTS[kind][0]
     n_e = len(knots)
     log_ei = np.asarray(v[:n_e], dtype=float)
-    coarse = [knots.index(x) for x in SPLINE_KNOTS[kind][0]]  # ValueError if not a subset
+    coarse = default_knot_indices(kind, knots)
     jumps = dict.fromkeys(range(n_e - 1), 0.0)
     for a, b in itertools.pairwise(coarse):
         jumps[a] = max(0.0, abs(log_ei[b] - log_ei[a]) - math.log(EI_STEP_MAX))
@@ -694,11 +709,7 @@ def write_shipped(doc: dict, path: Path) -> Path:
         peak = int(np.argmax(log_ei))
         # the step limit acts between neighbouring knots of the default SPLINE_KNOTS
         # (ei_shape_residuals), a subset of the record's knots
-        coarse = [
-            i
-            for i, x in enumerate(doc["ei_knots_m"])
-            if any(abs(x - c) < 1e-9 for c in SPLINE_KNOTS[kind][0])
-        ]
+        coarse = default_knot_indices(kind, doc["ei_knots_m"])
         step = float(np.exp(np.max(np.abs(np.diff(log_ei[coarse])))))
         text += (
             f" EI(x) fitted under shape limits (one peak, neighbouring knots within "
