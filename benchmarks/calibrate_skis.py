@@ -249,6 +249,12 @@ def plausibility(ski: Ski) -> dict[str, float]:
         h50 = solve_beam(ski, mass=50.0, load_position=POS).sample(0.0)
         out["h_50kg_mm"] = float(h50) * 1e3
         out["pocket_01_half_mm"] = wax_pocket_length(x, half.sample(x), threshold=0.1e-3) * 1e3
+        # the largest gap left in the kick zone at twice the body weight: a real ski is flat
+        # there; a wavy free camber stands on points with gaps no load closes
+        a, b = ski.kick_zone if ski.kick_zone else (-0.30, 0.35)
+        xk = np.linspace(a, b, 401)
+        h130 = solve_beam(ski, mass=2.0 * BODY, load_position=POS).sample(xk)
+        out["kick_gap_2x_mm"] = float(np.max(h130)) * 1e3
     else:
         out["h_130kg_mm"] = float(solve_beam(ski, mass=130.0, load_position=POS).sample(0.0)) * 1e3
     return out
@@ -295,6 +301,9 @@ class FitOptions:
         ``--findings``: also the rear/front load partition hardly changing from 30 to 60 kg on
         100 MPa (paper 67 -> 71 %, a change of 0.04): a hinge at ``SHARE_CHANGE_MAX``, one unit
         per load-share point.
+    kick_gap_max_mm
+        ``--kick-gap-max``: classic only, a hinge on the largest gap left in the kick zone at
+        twice the body weight at -80 mm (``kick_gap_2x_mm``), 0.01 mm a unit; None: off.
     """
 
     plausibility: bool = True
@@ -306,6 +315,7 @@ class FitOptions:
     bench_topology: bool = False
     front_pressure_growth_min: float = 1.2
     share_change: bool = False
+    kick_gap_max_mm: float | None = None
 
 
 def hinge_limits(
@@ -319,7 +329,7 @@ def hinge_limits(
             ("h_50kg_mm", 0.12, None, 0.01),
             ("pocket_01_half_mm", 450, 560, 15),
             ("free_camber_mm", None, 15.0, 1.0),
-        ]
+        ] + ([("kick_gap_2x_mm", None, opts.kick_gap_max_mm, 0.01)] if opts.kick_gap_max_mm else [])
     return [
         ("k_n_per_mm", *opts.k_range_n_per_mm, 5),
         ("camber_full_mm", 1.2, None, 0.05),
@@ -688,7 +698,13 @@ def write_shipped(doc: dict, path: Path) -> Path:
             "at half body weight)."
         )
     k_range = doc.get("k_range_n_per_mm")
-    limits = hinge_limits(kind, FitOptions(k_range_n_per_mm=tuple(k_range or (225.0, 251.0))))
+    limits = hinge_limits(
+        kind,
+        FitOptions(
+            k_range_n_per_mm=tuple(k_range or (225.0, 251.0)),
+            kick_gap_max_mm=doc.get("kick_gap_max_mm"),
+        ),
+    )
 
     def _range(lo: float | None, hi: float | None) -> str:
         return (
@@ -875,6 +891,11 @@ def main() -> None:
     )  # fmt: skip
     ap.add_argument("--sigma", type=float, default=0.08, help="population spread (unit box)")
     ap.add_argument(
+        "--kick-gap-max", type=float, default=None, metavar="MM",
+        help="classic: hinge on the largest gap left in the kick zone at twice the body weight "
+        "(-80 mm) [mm]; off by default (chosen, not sourced: a real ski is flat there)",
+    )  # fmt: skip
+    ap.add_argument(
         "--write-shipped", type=Path, default=None,
         help="write the ski of this calibration record as the shipped ski file",
     )  # fmt: skip
@@ -905,6 +926,8 @@ def main() -> None:
             opts = replace(opts, front_pressure_growth_min=args.front_pressure_growth_min)
     if args.k_range is not None:
         opts = replace(opts, k_range_n_per_mm=(args.k_range[0], args.k_range[1]))
+    if args.kick_gap_max is not None:
+        opts = replace(opts, kick_gap_max_mm=args.kick_gap_max)
     for kind in args.ski or ["classic", "skate"]:
         if args.shipped:
             report(kind, shipped_vector(kind), opts)
@@ -935,6 +958,7 @@ def main() -> None:
             "rear_growth_min": opts.rear_growth_min,
             "front_pressure_growth_min": opts.front_pressure_growth_min,
             "k_range_n_per_mm": list(opts.k_range_n_per_mm),
+            "kick_gap_max_mm": opts.kick_gap_max_mm,
             "starts": args.start or ["START"],
             "knots": args.knots,
             "polish_starts": args.polish_starts,
