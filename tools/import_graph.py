@@ -17,6 +17,7 @@ It reads the source as text (:mod:`ast`; nothing is imported) and prints
 * the compatibility re-exports: names a room's ``_LAZY`` map sends to another room, allowed only
   where the room's docstring names them in a paragraph saying they are "kept for compatibility";
 * circles between rooms and between the modules of one room;
+* imports inside ``src`` that go through such a compatibility re-export;
 * cross-room private imports: ``skisnow.X._module`` or a ``_name`` from another room;
 * modules over 500 lines.
 
@@ -39,7 +40,8 @@ from pathlib import Path
 ROOT = "skisnow"
 CORE = "core"
 MAX_LINES = 500
-_MAY_IMPORT = re.compile(r"^\s*May import:\s*(.*)$", re.MULTILINE)
+# the "May import:" line and the lines that continue it, up to a blank line
+_MAY_IMPORT = re.compile(r"^\s*May import:\s*(.*(?:\n[ \t]*\S.*)*)", re.MULTILINE)
 _COMPAT = re.compile(r"kept for compatibility", re.IGNORECASE)
 
 
@@ -114,6 +116,16 @@ class Graph:
             if a != b and b != CORE and e.private:
                 out.append(e)
         return out
+
+    def through_compat(self) -> list[Edge]:
+        """Imports inside ``src`` of a name through another room's compatibility re-export
+        (the name should be imported from its home)."""
+        compat = {(f"{ROOT}.{c.room}", c.name) for c in self.compat}
+        return [
+            e
+            for e in self.edges
+            if e.kind != "lazy-map" and any((e.target, n) in compat for n in e.names)
+        ]
 
     def room_circles(self) -> list[list[str]]:
         graph = {r: set() for r in self.rooms}
@@ -415,6 +427,10 @@ def report(g: Graph) -> str:
     for (room, target, documented), names in sorted(by_room.items()):
         flag = "" if documented else "  NOT DOCUMENTED AS COMPATIBILITY"
         add(f"  {room} -> {target}: {', '.join(sorted(names))}{flag}")
+    through = g.through_compat()
+    add(f"Imports inside src through a compatibility re-export ({len(through)})")
+    for e in through:
+        add(f"  {_where(g, e)}")
     add("")
     circles = g.room_circles()
     add(f"Circles between rooms ({len(circles)})")
