@@ -292,6 +292,7 @@ def solve_contact(
         initial_pressure=initial_pressure,
         multilevel=model == "surface" if multilevel is None else multilevel,
         tol=tol,
+        solve=solve_contact,  # the multilevel start's coarse solve: this function, recursively
     )
     if candidates is None:
         candidates = model != "surface" and problem.h.size >= CANDIDATE_MIN_CELLS

@@ -5,7 +5,8 @@ Three starts, tried in this order by :func:`starting_pressure`:
 1. a warm start given by the caller (e.g. the previous solution along a load path), clipped to
    p ≥ 0 and rescaled to the constraints;
 2. the multilevel start (:func:`coarse_start`): the same problem solved on a grid twice as coarse,
-   recursively, and prolonged (the coarse-to-fine idea of Polonsky & Keer 1999's multi-level
+   recursively (by the solver the caller passes in, :func:`~skisnow.contact.solve_contact`),
+   and prolonged (the coarse-to-fine idea of Polonsky & Keer 1999's multi-level
    scheme, here only as a start);
 3. the rigid start (:func:`rigid_start`): the rigid contact plane of the profile plus a crude
    penetration estimate, rescaled to the constraints.
@@ -14,6 +15,9 @@ Under displacement control the default start is the rigid overlap divided by K(0
 """
 
 from __future__ import annotations
+
+from collections.abc import Callable
+from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike
@@ -37,9 +41,12 @@ def starting_pressure(
     initial_pressure: ArrayLike | None,
     multilevel: bool,
     tol: float,
+    solve: Callable[..., Any],
 ) -> np.ndarray:
     """The start on the footprint cells (flat): the warm start if usable, else the multilevel
-    start if asked for and usable, else the rigid start (see the module docstring)."""
+    start if asked for and usable, else the rigid start (see the module docstring). ``solve``
+    solves the coarse problem of the multilevel start (:func:`~skisnow.contact.solve_contact`,
+    passed in by it: the recursion)."""
     pr = problem
     total, moment = pr.total, pr.moment
     p0 = None
@@ -59,7 +66,7 @@ def starting_pressure(
             if not ok:
                 p0 = None
     if p0 is None and pr.control != "displacement" and multilevel:
-        coarse = coarse_start(pr, tol=tol)
+        coarse = coarse_start(pr, tol=tol, solve=solve)
         if coarse is not None:
             cf = pr.on_cells(coarse)
             if cf.sum() > 0:
@@ -134,15 +141,16 @@ def rigid_start(
     return p
 
 
-def coarse_start(problem: ContactProblem, *, tol: float) -> np.ndarray | None:
+def coarse_start(
+    problem: ContactProblem, *, tol: float, solve: Callable[..., Any]
+) -> np.ndarray | None:
     """Solve the same problem on a grid twice as coarse (recursively) and prolong the pressure.
 
     Heights are averaged over pairs (2 × 2 blocks) of cells; the coarse pressure is repeated on
-    the fine cells (a grid field). Returns None when the grid is too small or of odd size, or
-    when the coarse problem cannot be solved.
+    the fine cells (a grid field). ``solve`` is :func:`~skisnow.contact.solve_contact` (passed
+    in by it: the recursion, one level coarser). Returns None when the grid is too small or of
+    odd size, or when the coarse problem cannot be solved.
     """
-    from skisnow.contact._solver import solve_contact  # the recursion: one level coarser
-
     pr = problem
     x, h, y, width = pr.x, pr.height, pr.y, pr.width
     nx = x.size
@@ -174,7 +182,7 @@ def coarse_start(problem: ContactProblem, *, tol: float) -> np.ndarray | None:
         hc = 0.5 * (h[0::2] + h[1::2])
         kwargs = {"width": width}
     try:
-        sol = solve_contact(
+        sol = solve(
             xc,
             hc,
             load=pr.load,
