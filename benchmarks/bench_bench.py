@@ -16,14 +16,8 @@ import numpy as np
 from rich.console import Console
 from rich.table import Table
 
-from skisnow.ski import (
-    DEFAULT_LOAD_POSITIONS,
-    DEFAULT_MASSES,
-    SHIPPED_SKIS,
-    get_ski,
-    run_bench,
-    solve_beam,
-)
+from skisnow.bench import DEFAULT_LOAD_POSITIONS, DEFAULT_MASSES, run_bench
+from skisnow.ski import SHIPPED_SKIS, get_ski, solve_beam
 
 
 def _iterations(name: str, warm: bool) -> tuple[list[int], float]:

@@ -42,7 +42,8 @@ import time
 import numpy as np
 from bench_identify import error_profiles, plan_bench, stiff_test_ski
 
-from skisnow.ski import get_ski, identify_ski, predict_identification_uncertainty
+from skisnow.identify import identify_ski, predict_identification_uncertainty
+from skisnow.ski import get_ski
 
 USER = (-0.900, 0.850)
 PLANS: dict[str, tuple[tuple[float, ...], tuple[float, ...], tuple[float, float] | None]] = {

@@ -53,7 +53,8 @@ def timed(fn, repeat: int):
 
 
 def ski_case(n: int):
-    from skisnow.ski import camber_profile, get_ski
+    from skisnow.network import camber_profile
+    from skisnow.ski import get_ski
 
     ski = get_ski("classic")
     edges = np.linspace(ski.x_tail, ski.x_tip, n + 1)

@@ -20,7 +20,7 @@ def main() -> None:
     p.add_argument("--skis", nargs="+", default=["classic", "skate"])
     args = p.parse_args()
     from skisnow.explore import ExplorerGrid, explorer_dataset, render_explorer
-    from skisnow.ski import camber_profile
+    from skisnow.network import camber_profile
 
     camber_profile(args.skis[0], mass=60.0, load_position=-0.12, source="network")  # warm JAX
     print(f"load before: {os.getloadavg()}")

@@ -52,8 +52,9 @@ def main() -> None:
     from skisnow.cli._render import print_table
     from skisnow.constants import STANDARD_GRAVITY
     from skisnow.contact import STONE, effective_modulus, snow, solve_contact, solve_flexible
+    from skisnow.network import camber_profile
     from skisnow.pipeline import stations
-    from skisnow.ski import camber_profile, get_ski
+    from skisnow.ski import get_ski
     from skisnow.sweep import SweepSpec, run_sweep
 
     print("load before:", _uptime())

@@ -42,8 +42,10 @@ import time
 
 import numpy as np
 
+from skisnow.bench import run_bench
+from skisnow.identify import identify_ski
 from skisnow.pipeline import solve_case
-from skisnow.ski import Ski, get_ski, identify_ski, run_bench, solve_beam
+from skisnow.ski import Ski, get_ski, solve_beam
 from skisnow.ski._shipped import _build_glide
 
 

@@ -31,8 +31,10 @@ import dataclasses
 import numpy as np
 from bench_identify import coverage, stiff_test_ski
 
+from skisnow.bench import run_bench
+from skisnow.identify import identify_ski
 from skisnow.pipeline import solve_case
-from skisnow.ski import Ski, get_ski, identify_ski, run_bench
+from skisnow.ski import Ski, get_ski
 
 QUANTITIES = [(m, z, q) for m in (30.0, 60.0) for z in ("rear", "front")
               for q in ("length", "mean_pressure")]  # fmt: skip

@@ -34,7 +34,8 @@ import argparse
 import numpy as np
 from bench_identify import bench_of, error_profiles
 
-from skisnow.ski import get_ski, identify_ski
+from skisnow.identify import identify_ski
+from skisnow.ski import get_ski
 
 
 def line(tag: str, res, true) -> str:

@@ -33,9 +33,9 @@ from bench_identify import bench_of, stiff_test_ski
 from bench_identify_contact import QUANTITIES, contact, differences
 
 from skisnow import SkisnowError
-from skisnow.ski import _identify as ident
+from skisnow.identify import _identify as ident
+from skisnow.identify._fit import identified_profiles
 from skisnow.ski import get_ski
-from skisnow.ski._identify_fit import identified_profiles
 
 
 def identify(bench, max_nfev: int):

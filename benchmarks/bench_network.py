@@ -23,11 +23,12 @@ from pathlib import Path
 
 import numpy as np
 
-from skisnow.ski import DEFAULT_LOAD_POSITIONS, DEFAULT_MASSES, get_ski, run_bench, solve_beam
+from skisnow.bench import DEFAULT_LOAD_POSITIONS, DEFAULT_MASSES, run_bench
+from skisnow.ski import get_ski, solve_beam
 
 TEST_MASSES = (7.5, 32.5, 62.5, 97.5, 127.5)
 TEST_POSITIONS = (-0.060, -0.100, -0.140, -0.180, -0.220)
-MODELS = Path(__file__).resolve().parents[1] / "src" / "skisnow" / "ski" / "models"
+MODELS = Path(__file__).resolve().parents[1] / "src" / "skisnow" / "network" / "models"
 
 #: Settings of the shipped networks (see README "Camber network").
 SHIPPED_SETTINGS = {
@@ -105,7 +106,7 @@ def main() -> None:
     from rich.console import Console
     from rich.table import Table
 
-    from skisnow.ski import save_network, shipped_network, train_network
+    from skisnow.network import save_network, shipped_network, train_network
 
     console = Console(width=170)
     console.print(f"load before: {os.getloadavg()}  (2-core machine shared with other engineers)")

@@ -44,9 +44,17 @@ from scipy.interpolate import PchipInterpolator
 from scipy.optimize import OptimizeResult, differential_evolution, least_squares
 
 from skisnow.paper import CAPTIONS, TOLERANCES, compare_case, solve_caption_case
-from skisnow.ski import Ski, get_ski, solve_beam
-from skisnow.ski._metrics import ski_stiffness, wax_pocket, wax_pocket_length
-from skisnow.ski._spline import SPLINE_ENDS, SPLINE_KNOTS, spline_ski
+from skisnow.ski import (
+    SPLINE_ENDS,
+    SPLINE_KNOTS,
+    Ski,
+    get_ski,
+    ski_stiffness,
+    solve_beam,
+    spline_ski,
+    wax_pocket,
+    wax_pocket_length,
+)
 
 BODY, POS = 65.0, -0.080  # the practitioners' skier [kg] and load position [m]
 PATCH_PENALTY = 3.0  # residual of a wrong patch count or an extra zone (in tolerance units)
@@ -681,9 +689,7 @@ def write_shipped(doc: dict, path: Path) -> Path:
     import datetime
 
     from skisnow import __version__
-    from skisnow.ski import Provenance
-    from skisnow.ski._shipped import _SOURCE_LIST
-    from skisnow.ski._skifile import write_ski
+    from skisnow.ski import SHIPPED_SOURCES, Provenance, write_ski
 
     kind = doc["ski"]
     pr = doc["plausibility"]
@@ -798,7 +804,7 @@ def write_shipped(doc: dict, path: Path) -> Path:
         data="the caption numbers of Figs. 4-7 (skisnow.paper.CAPTIONS) through the paper's "
         "pipeline (beam on the rigid plane, rigid profile, strip half-space, E_base 900 MPa, "
         "nu 0.3); hinge limits on the practitioners' numbers",
-        sources=_SOURCE_LIST,
+        sources=SHIPPED_SOURCES,
         created=datetime.datetime.now(datetime.UTC).strftime("%Y-%m-%dT%H:%M:%SZ"),
         software=f"skisnow {__version__}",
         details=(

@@ -52,7 +52,7 @@ def test_sorted_unique_sorts_and_names_the_defect() -> None:
 def test_bench_grid_rejects_a_repeated_mass() -> None:
     """Changed in the refactor: ``run_bench`` silently merged a mass given twice; it now shares
     the sweep's rule (a grid names each point once) and says which value was repeated."""
-    from skisnow.ski import run_bench
+    from skisnow.bench import run_bench
 
     with pytest.raises(InputError, match=r"masses \[kg\].*\[30.0\]"):
         run_bench("classic", masses=[30.0, 30.0, 60.0], load_positions=[-0.1])

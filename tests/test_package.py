@@ -55,7 +55,7 @@ def test_table_numbers_are_plain(value: float, text: str) -> None:
 def test_cli_passes_on_the_exit_code_of_a_command() -> None:
     import typer
 
-    from skisnow.cli._app import app
+    from skisnow.cli import app
 
     @app.command("_exit-with-3", hidden=True)
     def _exit_with_3() -> None:

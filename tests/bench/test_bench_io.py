@@ -9,8 +9,14 @@ import pandas as pd
 import pytest
 
 from skisnow import FileFormatError, InputError, allow_implausible
-from skisnow.io import MIN_PROFILE_POINTS, BenchData, read_bench, write_bench
-from skisnow.ski import run_bench, ski_metrics
+from skisnow.bench import (
+    MIN_PROFILE_POINTS,
+    BenchData,
+    read_bench,
+    run_bench,
+    ski_metrics,
+    write_bench,
+)
 
 
 @pytest.fixture(scope="module")

@@ -7,21 +7,24 @@ import pandas as pd
 import pytest
 
 from skisnow import InputError
-from skisnow.constants import STANDARD_GRAVITY
-from skisnow.io import BENCH_COLUMNS, BenchData
-from skisnow.ski import (
+from skisnow.bench import (
+    BENCH_COLUMNS,
     DEFAULT_LOAD_POSITIONS,
     DEFAULT_MASSES,
+    BenchData,
     bench_grid,
-    camber_height,
-    camber_profile,
     closing_load,
     closing_load_from_bench,
+    run_bench,
+    ski_metrics,
+)
+from skisnow.constants import STANDARD_GRAVITY
+from skisnow.network import camber_profile
+from skisnow.ski import (
+    camber_height,
     contact_lengths,
     contact_patches,
     get_ski,
-    run_bench,
-    ski_metrics,
     ski_stiffness,
     solve_beam,
     wax_pocket,

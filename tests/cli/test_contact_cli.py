@@ -58,8 +58,8 @@ def test_json_document_and_fields_balance(capsys, tmp_path: Path) -> None:
 
 
 def test_profile_csv_gives_the_same_answer_as_the_ski(capsys, tmp_path: Path) -> None:
+    from skisnow.network import camber_profile
     from skisnow.pipeline import stations
-    from skisnow.ski import camber_profile
 
     # the stations of the grid convention (skisnow.pipeline), written with 17 digits
     x, h = camber_profile(

@@ -9,8 +9,8 @@ from pathlib import Path
 
 import pytest
 
+from skisnow.bench import read_bench
 from skisnow.cli import main
-from skisnow.io import read_bench
 from skisnow.ski import get_ski
 
 

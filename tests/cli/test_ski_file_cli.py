@@ -8,8 +8,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
+from skisnow.bench import read_bench
 from skisnow.cli import main
-from skisnow.io import read_bench
 from skisnow.ski import get_ski, write_ski
 from skisnow.sweep import open_sweep
 

@@ -11,8 +11,14 @@ from hypothesis import strategies as st
 import skisnow.contact._candidates as cand_mod
 import skisnow.contact._solver as solver_mod
 from skisnow import InputError
-from skisnow.contact import effective_modulus, reference, snow, solve_contact
-from skisnow.contact._kernels import line_convolution, strip_convolution
+from skisnow.contact import (
+    effective_modulus,
+    line_convolution,
+    reference,
+    snow,
+    solve_contact,
+    strip_convolution,
+)
 from skisnow.contact._operators import RestrictedOperator, _toeplitz_rows
 
 
@@ -58,7 +64,7 @@ def test_restricted_operator_is_the_restriction(picked: list[int], dense: bool) 
 
 
 def test_restricted_operator_needs_a_1d_kernel() -> None:
-    from skisnow.contact._kernels import surface_convolution
+    from skisnow.contact import surface_convolution
 
     with pytest.raises(InputError, match="1D"):
         RestrictedOperator.build(surface_convolution((8, 4), 1e-3, 1e-3, modulus=1e8), [1, 2])

@@ -7,7 +7,7 @@ import pytest
 from scipy import integrate, signal, special
 
 from skisnow import InputError
-from skisnow.contact._kernels import (
+from skisnow.contact import (
     Convolution,
     line_convolution,
     line_kernel,

@@ -14,7 +14,8 @@ from skisnow.contact import (
     snow,
     solve_contact,
 )
-from skisnow.ski import camber_profile, get_ski
+from skisnow.network import camber_profile
+from skisnow.ski import get_ski
 
 G = 9.80665
 

@@ -97,8 +97,7 @@ class _Payload:
 
 def _bench_table(d: Path) -> tuple[Path, list[str]]:
     """A valid bench CSV (skate, 3 masses at one position, 20 mm step) and its lines."""
-    from skisnow.io import write_bench
-    from skisnow.ski import run_bench
+    from skisnow.bench import run_bench, write_bench
 
     data = run_bench("skate", masses=[20.0, 60.0, 100.0], load_positions=[-0.12], dx=0.02)
     path = d / "bench_ok.csv"
@@ -306,7 +305,7 @@ def virtual_bench_cases(d: Path) -> list[Case]:
 
 
 def profile_cases(d: Path) -> list[Case]:
-    from skisnow.ski import camber_profile
+    from skisnow.network import camber_profile
 
     x = np.linspace(-0.9, 0.92, 200)
     _, h = camber_profile("skate", mass=60.0, load_position=-0.12, x=x, source="beam")
@@ -577,7 +576,7 @@ def rank_cases(d: Path) -> list[Case]:
 def model_cases(d: Path) -> list[Case]:
     from importlib import resources
 
-    base = resources.files("skisnow.ski") / "models"
+    base = resources.files("skisnow.network") / "models"
     npz = (base / "skate.npz").read_bytes()
     doc = json.loads((base / "skate.json").read_text())
     other = (base / "classic.npz").read_bytes()

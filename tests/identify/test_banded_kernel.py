@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 from scipy.linalg import solveh_banded
 
-from skisnow.ski._banded_kernel import banded_cholesky, banded_solve, solveh_banded_fused
-from skisnow.ski._identify_model import _Problem
+from skisnow.identify._banded_kernel import banded_cholesky, banded_solve, solveh_banded_fused
+from skisnow.identify._model import _Problem
 
 
 def _stiffness(rng: np.random.Generator, trial: int) -> np.ndarray:

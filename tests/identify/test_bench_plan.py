@@ -15,9 +15,11 @@ import numpy as np
 import pytest
 
 from skisnow._errors import InputError
-from skisnow.ski import get_ski, predict_identification_uncertainty, run_bench
-from skisnow.ski._bench_plan import fit_parameters, plan_problem, ski_parameters
-from skisnow.ski._identify_model import _design
+from skisnow.bench import run_bench
+from skisnow.identify import predict_identification_uncertainty
+from skisnow.identify._bench_plan import fit_parameters, plan_problem, ski_parameters
+from skisnow.identify._model import _design
+from skisnow.ski import get_ski
 
 N_EL = 200
 USER = (-0.9, 0.85)  # the stations of the user bench (benchmarks/bench_identify.py)

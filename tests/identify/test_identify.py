@@ -11,10 +11,11 @@ import numpy as np
 import pytest
 
 from skisnow import InputError
-from skisnow.ski import _identify as ident
-from skisnow.ski import _identify_fit as ident_fit
-from skisnow.ski import get_ski, read_ski, run_bench, solve_beam
-from skisnow.ski._identify_smooth import SmoothedBench
+from skisnow.bench import run_bench
+from skisnow.identify import _fit as ident_fit
+from skisnow.identify import _identify as ident
+from skisnow.identify._smooth import SmoothedBench
+from skisnow.ski import get_ski, read_ski, solve_beam
 from skisnow.ski._shipped import build_shipped
 
 NOISE = 1e-5  # m: a bench's 10 µm
@@ -187,8 +188,8 @@ def test_bad_input(bench) -> None:
 
 
 def test_cli_identify(bench, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    from skisnow.bench import write_bench
     from skisnow.cli import main
-    from skisnow.io import write_bench
 
     src = write_bench(bench, tmp_path / "b.csv")
     out = tmp_path / "ski.json"
@@ -217,7 +218,7 @@ def test_identifies_the_shipped_ski_from_a_user_bench(name: str) -> None:
     # noise: its rms misfit no worse than the true ski's own on the same data (10 % slack for
     # the ~120 fitted parameters' share of the noise), and its noise-free profiles at the
     # bench's loads must be the true ski's within the noise (it found the ski, not the noise).
-    # Not asserted (a known miss, module docstring of skisnow.ski._identify): profiles at
+    # Not asserted (a known miss, module docstring of skisnow.identify._identify): profiles at
     # masses between the bench's, where the contact rolls over glide-zone stations no bench
     # load presses (classic, 50 kg: 54-57 µm for seeds 1 and 5).
     true = get_ski(name)
@@ -257,7 +258,7 @@ def test_a_fit_that_stalls_above_the_noise_is_globalised() -> None:
     # which the fit from the default start ends in a local minimum: measured before the
     # globalisation, misfit 2.39 σ with EI 9.8 % and z0 39 µm off (the 80 kg load touched the
     # stone under the foot 50 mm behind the true contact). With the smoothed-contact polish
-    # from the stalled fit (module docstring of skisnow.ski._identify_fit) the fit must reach
+    # from the stalled fit (module docstring of skisnow.identify._fit) the fit must reach
     # the noise and the issue's targets: EI within 5 % rms between the glide zones and the
     # identified ski's noise-free profiles at the bench's loads within the noise. z0 (modulo the
     # line the bench cannot see) is not held to the issue's 10 µm rms: on this bench it is set
@@ -373,7 +374,7 @@ def test_a_local_minimum_within_the_bins_bound_is_restarted() -> None:
 def test_the_smoothed_restart_ends_where_the_smoothed_stone_is_the_exact_contact() -> None:
     # Where heavy loads press a glide zone flat on the stone, the reactions of the exact contact
     # there are extremely sensitive to the gaps, and a smoothed stone of width ε redistributes
-    # them (module docstring of skisnow.ski._identify_smooth). At the true skate (version 2,
+    # them (module docstring of skisnow.identify._smooth). At the true skate (version 2,
     # z0 on 197 coefficients, where the exact model fits the bench to its noise) a 0.1 µm
     # smoothing must still be off the exact contact by more than the noise — the standard
     # deviation of χ², (2 n)^1/2, the stopping test of the restart's ε sequence — so the restart

@@ -6,8 +6,12 @@ import numpy as np
 import pytest
 
 from skisnow.contact.reference import hertz_sphere
-from skisnow.micro import elastoplastic_contact, flat_plastic_area, ice_base_modulus
-from skisnow.micro._topography import make_topography
+from skisnow.micro import (
+    elastoplastic_contact,
+    flat_plastic_area,
+    ice_base_modulus,
+    make_topography,
+)
 
 
 def _bump(n: int = 96, dx: float = 1e-6, radius: float = 1e-3) -> object:

@@ -18,14 +18,14 @@ SMALL_TRAINING = {"adam_steps": 300, "lm_steps": 40, "lm_points": 800, "report_e
 
 @pytest.fixture(scope="session")
 def small_bench():
-    from skisnow.ski import run_bench
+    from skisnow.bench import run_bench
 
     return run_bench("classic", masses=SMALL_MASSES, load_positions=SMALL_POSITIONS, dx=10e-3)
 
 
 @pytest.fixture(scope="session")
 def small_network(small_bench):
-    from skisnow.ski import train_network
+    from skisnow.network import train_network
 
     return train_network(small_bench, seed=3, architecture=SMALL_WIDTHS, **SMALL_TRAINING)
 
@@ -50,15 +50,15 @@ def toy_network():
 def make_toy_network(n_members: int = 1):
     import jax
 
-    from skisnow.ski._network import (
+    from skisnow.network import (
         Architecture,
         BlockNetwork,
         CamberNetwork,
         Domain,
         ReferenceProfile,
         Scaling,
-        x64,
     )
+    from skisnow.network._network import x64
 
     arch = Architecture.from_widths("3,5,4,6,4,3")
     scaling = Scaling(

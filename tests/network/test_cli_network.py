@@ -38,7 +38,7 @@ def test_predict_outside_domain_warns_or_refuses(capsys):
 
 
 def test_train_then_predict_with_figure(tmp_path, small_bench, capsys):
-    from skisnow.io import write_bench
+    from skisnow.bench import write_bench
 
     bench = tmp_path / "bench.csv"
     write_bench(small_bench, bench)

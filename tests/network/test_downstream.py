@@ -28,7 +28,8 @@ N_STATIONS = 1024
 
 def _zones(ski_name: str, mass: float, position: float, source: str):
     from skisnow.contact import contact_zones, effective_modulus, snow, solve_contact
-    from skisnow.ski import camber_profile, get_ski
+    from skisnow.network import camber_profile
+    from skisnow.ski import get_ski
 
     ski = get_ski(ski_name)
     edges = np.linspace(ski.x_tail, ski.x_tip, N_STATIONS + 1)

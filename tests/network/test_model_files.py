@@ -9,8 +9,7 @@ import numpy as np
 import pytest
 
 from skisnow import FileFormatError
-from skisnow.io import metadata_checksum
-from skisnow.ski import load_network, save_network
+from skisnow.network import load_network, metadata_checksum, save_network
 
 
 def _x():
@@ -112,7 +111,8 @@ def test_loaded_numbers_are_checked_even_when_re_signed(toy_network, tmp_path, k
 
 @pytest.mark.parametrize("ski", ["classic", "skate"])
 def test_shipped_networks_load(ski):
-    from skisnow.ski import get_ski, shipped_network
+    from skisnow.network import shipped_network
+    from skisnow.ski import get_ski
 
     net = shipped_network(ski)
     assert net is shipped_network(ski)  # cached
@@ -131,7 +131,9 @@ def test_shipped_networks_match_the_current_beam(ski):
     this fails. Tolerance: mean |error| < 15 µm over three load cases between the bench grid
     values -- three times the measured ~5 µm, far below the mm-scale change a re-calibrated
     ski makes."""
-    from skisnow.ski import bench_grid, get_ski, shipped_network, solve_beam
+    from skisnow.bench import bench_grid
+    from skisnow.network import shipped_network
+    from skisnow.ski import get_ski, solve_beam
 
     s = get_ski(ski)
     x = bench_grid(s, 2e-3)
@@ -147,7 +149,7 @@ def test_demo_refuses_a_corrupt_shipped_model_and_falls_back_only_when_absent(
 ):
     """A corrupt shipped model is an error, not a silent switch to the beam (it used to be
     hidden by a bare ``except Exception`` in the demo); a missing one falls back with a note."""
-    import skisnow.io._model as model_io
+    import skisnow.network._files as model_io
     from skisnow.cli._demo import network_or_beam
     from skisnow.ski import SHIPPED_SKIS
 
@@ -176,7 +178,7 @@ def test_demo_refuses_a_corrupt_shipped_model_and_falls_back_only_when_absent(
 
 def test_training_status_round_trips_and_a_foreign_status_is_refused(toy_network, tmp_path):
     from skisnow import SolverStatus
-    from skisnow.ski import CamberNetwork
+    from skisnow.network import CamberNetwork
 
     net = CamberNetwork(
         architecture=toy_network.architecture,

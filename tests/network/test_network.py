@@ -12,14 +12,8 @@ import pytest
 from jax.flatten_util import ravel_pytree
 
 from skisnow import DomainWarning, InputError
-from skisnow.ski._network import (
-    Architecture,
-    BlockNetwork,
-    CamberNetwork,
-    Domain,
-    Scaling,
-    x64,
-)
+from skisnow.network import Architecture, BlockNetwork, CamberNetwork, Domain, Scaling
+from skisnow.network._network import x64
 
 ARCH = Architecture.from_widths("3,5,4,6,4,3")
 

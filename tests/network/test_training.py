@@ -73,8 +73,7 @@ def test_seed_reproducibility(small_bench):
     A deliberately tiny run (widths 2,3,3,3,2,2; 20 Adam + 3 LM steps): reproducibility does not
     need accuracy, and the test stays cheap.
     """
-    from skisnow.io import network_arrays
-    from skisnow.ski import train_network
+    from skisnow.network import network_arrays, train_network
 
     kw = {
         "architecture": "2,3,3,3,2,2",
@@ -98,7 +97,7 @@ def test_seed_reproducibility(small_bench):
 
 
 def test_bench_hash_ignores_row_order(small_bench):
-    from skisnow.ski._training import bench_sha256
+    from skisnow.network import bench_sha256
 
     shuffled = small_bench.table.sample(frac=1.0, random_state=1)
     assert bench_sha256(shuffled) == bench_sha256(small_bench)
@@ -116,7 +115,7 @@ def test_bad_bench_tables_are_rejected(small_bench):
     rejects, e.g. a profile whose x does not increase.
     """
     from skisnow import FileFormatError
-    from skisnow.ski import train_network
+    from skisnow.network import train_network
 
     t = small_bench.table
     with pytest.raises(FileFormatError, match="missing column 'height_mm'"):
@@ -157,7 +156,7 @@ def test_adam_alone_reports_its_budget_and_raises_on_request(small_bench):
     """Adam has a fixed step budget and no stopping criterion: MAX_STEPS_REACHED, and a
     ConvergenceError carrying the network when the caller asks for one."""
     from skisnow import ConvergenceError, SolverStatus
-    from skisnow.ski import CamberNetwork, train_network
+    from skisnow.network import CamberNetwork, train_network
 
     kw = {"architecture": "2,3,3,3,2,2", "adam_steps": 50, "lm_steps": 0, "report_every": 50}
     net = train_network(small_bench, seed=5, **kw)

@@ -11,7 +11,8 @@ import numpy as np
 import pytest
 
 from skisnow.cli import main
-from skisnow.pipeline import solve_case, standard_cases
+from skisnow.pipeline import solve_case
+from skisnow.report import standard_cases
 
 N = 512
 SKI, MASS, XM, E = "classic", 45.0, -0.12, 100e6  # a classic ski: the kick zone is used too
@@ -72,8 +73,7 @@ def test_one_point_sweep_is_solve_case(case, sweep) -> None:
 
 
 def test_report_shows_solve_case(case, sweep) -> None:
-    from skisnow.pipeline import study_ski
-    from skisnow.report import build_report
+    from skisnow.report import build_report, study_ski
 
     # the report's standard loads at body mass 2 x 45 kg: its half-weight case is this case
     half = standard_cases(SKI, body_mass=2 * MASS, load_position=XM, snows=(E,),

@@ -25,8 +25,7 @@ SKI = "skate"
 
 @pytest.fixture(scope="module")
 def report(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    from skisnow.pipeline import study_ski
-    from skisnow.report import write_report
+    from skisnow.report import study_ski, write_report
 
     out = tmp_path_factory.mktemp("report")
     spec = SweepSpec(

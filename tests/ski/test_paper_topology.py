@@ -14,7 +14,8 @@ import pytest
 
 from skisnow.constants import STANDARD_GRAVITY
 from skisnow.contact import contact_zones, effective_modulus, solve_contact
-from skisnow.ski import camber_profile, get_ski
+from skisnow.network import camber_profile
+from skisnow.ski import get_ski
 
 
 def _zones(name: str, mass: float, pos: float, e_snow: float):  # type: ignore[no-untyped-def]

@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 from skisnow import InputError
-from skisnow.ski import camber_profile, get_ski
+from skisnow.network import camber_profile
+from skisnow.ski import get_ski
 
 
 @pytest.mark.parametrize("source", ["beam", "network"])

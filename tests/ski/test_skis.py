@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 from skisnow import InputError
-from skisnow.ski import SHIPPED_SKIS, Ski, closing_load, get_ski, solve_beam
+from skisnow.bench import closing_load
+from skisnow.ski import SHIPPED_SKIS, Ski, get_ski, solve_beam
 
 BODY = 65.0  # kg, the issue's ~65 kg skier
 POS = -0.080  # m, the practitioners' 80 mm behind the balance point

@@ -9,7 +9,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from skisnow.ski._spline import SPLINE_ENDS, SPLINE_KNOTS, spline_ski
+from skisnow.ski import SPLINE_ENDS, SPLINE_KNOTS, spline_ski
 
 
 def _values(kind: str, ek, zk) -> tuple[np.ndarray, np.ndarray]:

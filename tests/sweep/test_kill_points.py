@@ -16,8 +16,8 @@ import xarray as xr
 import zarr.storage
 
 from skisnow import SkisnowError
-from skisnow.sweep import SweepSpec, open_sweep, run_sweep, save_netcdf
-from skisnow.sweep._store import VARIABLES, StoreLock
+from skisnow.sweep import VARIABLES, SweepSpec, open_sweep, run_sweep, save_netcdf
+from skisnow.sweep._store import StoreLock
 
 
 class Killed(Exception):

@@ -28,7 +28,7 @@ def dataset(tmp_path_factory: pytest.TempPathFactory):
 
 
 def test_zone_map_draws_the_data(dataset) -> None:
-    from skisnow.plot._maps import plot_zone_map
+    from skisnow.plot import plot_zone_map
 
     fig = plot_zone_map(dataset, variable="area_cm2", ski="skate", load_position_mm=-120)
     rear, front = fig.axes[:2]

@@ -189,8 +189,7 @@ def test_ski_files_enter_the_fleet(tmp_path: Path) -> None:
 def test_a_bench_file_enters_through_identification(tmp_path: Path) -> None:
     """Round trip: the virtual bench of the shipped skate (4 masses, 5 µm noise) → identified
     ski → contact within 5 % of the true ski's (the identification's own target)."""
-    from skisnow.io import write_bench
-    from skisnow.ski import run_bench
+    from skisnow.bench import run_bench, write_bench
 
     bench = run_bench(
         "skate", masses=(20.0, 40.0, 60.0, 80.0), load_positions=(-0.12,), noise=5e-6, seed=1

@@ -31,7 +31,7 @@ import numpy as np
 import pandas as pd
 
 from skisnow._errors import FileFormatError, InputError
-from skisnow.io._bench_table import BENCH_COLUMNS, MIN_PROFILE_POINTS, validate_bench_table
+from skisnow.bench._table import BENCH_COLUMNS, MIN_PROFILE_POINTS, validate_bench_table
 
 _META_TAG = "# skisnow-bench-metadata:"
 _PARQUET_KEY = b"skisnow.bench"

@@ -19,17 +19,21 @@ import numpy as np
 from numpy.typing import NDArray
 
 from skisnow._errors import InputError
-from skisnow.io import BenchData
-from skisnow.ski._beam import DEFAULT_BOOT_LENGTH, DEFAULT_N_ELEMENTS, solve_beam
-from skisnow.ski._metrics import (
+from skisnow.bench._data import BenchData
+from skisnow.ski import (
     CLOSED_THRESHOLD,
+    DEFAULT_BOOT_LENGTH,
     DEFAULT_METRIC_POSITION,
+    DEFAULT_N_ELEMENTS,
+    SHIPPED_SKIS,
+    Ski,
     camber_height,
     contact_lengths,
+    get_ski,
     ski_stiffness,
+    solve_beam,
     wax_pocket_length,
 )
-from skisnow.ski._skis import SHIPPED_SKIS, Ski, get_ski
 
 __all__ = ["SkiMetrics", "closing_load", "closing_load_from_bench", "ski_metrics"]
 
@@ -243,7 +247,7 @@ def ski_metrics(
     sk = _resolve_ski(source)  # a shipped name or a ski file
     if not isinstance(sk, Ski):
         raise InputError(f"source must be a Ski, a ski name or BenchData, not {type(source)}")
-    from skisnow.ski._bench import bench_grid
+    from skisnow.bench._virtual import bench_grid
 
     x = bench_grid(sk)
     profiles = []

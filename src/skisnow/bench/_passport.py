@@ -17,7 +17,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from skisnow._errors import InputError
-from skisnow.ski._skis import Ski
+from skisnow.ski import Ski
 
 __all__ = ["BAND_Z", "SkiPassport", "ski_passport"]
 
@@ -107,7 +107,7 @@ def ski_passport(
     doc = None
     if metrics:
         from skisnow._errors import UnsupportedLoadError
-        from skisnow.ski._ski_metrics import ski_metrics
+        from skisnow.bench._metrics import ski_metrics
 
         try:
             doc = ski_metrics(ski, body_mass=body_mass, load_position=load_position)

@@ -1,6 +1,6 @@
 """The one validation of a camber-bench table (columns, numbers, profiles, plausibility).
 
-A table has the columns :data:`BENCH_COLUMNS` in field units (see :mod:`skisnow.io._bench` for
+A table has the columns :data:`BENCH_COLUMNS` in field units (see :mod:`skisnow.bench._data` for
 their meaning). :func:`validate_bench_table` is the one definition of a valid table: the file
 readers, :class:`~skisnow.io.BenchData` and :func:`~skisnow.ski.train_network` all call it.
 Every defect raises :class:`~skisnow.FileFormatError` (impossible) or

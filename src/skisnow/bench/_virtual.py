@@ -19,9 +19,15 @@ from numpy.typing import ArrayLike, NDArray
 from skisnow import __version__
 from skisnow._errors import InputError
 from skisnow._values import sorted_unique
-from skisnow.io import BenchData
-from skisnow.ski._beam import DEFAULT_BOOT_LENGTH, DEFAULT_N_ELEMENTS, BeamSolution, solve_beam
-from skisnow.ski._skis import Ski, get_ski
+from skisnow.bench._data import BenchData
+from skisnow.ski import (
+    DEFAULT_BOOT_LENGTH,
+    DEFAULT_N_ELEMENTS,
+    BeamSolution,
+    Ski,
+    get_ski,
+    solve_beam,
+)
 
 __all__ = ["DEFAULT_LOAD_POSITIONS", "DEFAULT_MASSES", "bench_grid", "run_bench"]
 

@@ -2,6 +2,9 @@
 
 Each concern has its own module that adds commands to the shared Typer :data:`app`; importing
 them here registers the commands.
+
+May import: ski, bench, network, identify, contact, micro, pipeline, sweep, paper, workflows,
+explore, plot, report
 """
 
 from skisnow.cli import (  # noqa: F401  (registers)

@@ -85,7 +85,8 @@ def bench_plan(
     json_out: JsonOption = False,
 ) -> None:
     """Predict the identification's EI and z0 uncertainty for bench plans (Fisher information)."""
-    from skisnow.ski import get_ski, predict_identification_uncertainty
+    from skisnow.identify import predict_identification_uncertainty
+    from skisnow.ski import get_ski
 
     if not (math.isfinite(noise_um) and 0 < noise_um <= 5000):
         raise InputError(f"--noise-um must be in (0, 5000] µm, got {noise_um:g}")

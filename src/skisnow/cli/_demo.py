@@ -19,11 +19,11 @@ def run_ski_demo(out: Path, *, progress: bool = True) -> dict[str, Any]:
 
     Returns a document with the metrics and the files written.
     """
+    from skisnow.bench import run_bench, write_bench
     from skisnow.cli._render import progress_bar
     from skisnow.cli._ski import metrics_documents
-    from skisnow.io import write_bench
     from skisnow.plot import plot_camber_profiles, save_figure
-    from skisnow.ski import SHIPPED_SKIS, run_bench
+    from skisnow.ski import SHIPPED_SKIS
 
     out.mkdir(parents=True, exist_ok=True)
     files: list[str] = []
@@ -47,7 +47,7 @@ def network_or_beam() -> tuple[str, str]:
     corrupt, truncated or of another format version raises :class:`~skisnow.FileFormatError`
     (a broken installation must not pass silently as a beam demo).
     """
-    from skisnow.io import shipped_network
+    from skisnow.network import shipped_network
     from skisnow.ski import SHIPPED_SKIS
 
     try:
@@ -101,9 +101,9 @@ def run_contact_demo(
 
     from skisnow.cli._render import progress_bar
     from skisnow.explore import ExplorerGrid, write_explorer
-    from skisnow.pipeline import solve_case, study_ski
+    from skisnow.pipeline import solve_case
     from skisnow.plot import plot_contact, save_figure, sweep_figures
-    from skisnow.report import write_report
+    from skisnow.report import study_ski, write_report
     from skisnow.ski import SHIPPED_SKIS
     from skisnow.sweep import SweepSpec, open_sweep, run_sweep
 

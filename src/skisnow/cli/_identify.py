@@ -55,8 +55,9 @@ def identify(
     json_out: JsonOption = False,
 ) -> None:
     """Identify EI(x) and z0(x) from a whole bench sequence (beam on the stone, least squares)."""
-    from skisnow.io import read_bench
-    from skisnow.ski import identify_ski, write_ski
+    from skisnow.bench import read_bench
+    from skisnow.identify import identify_ski
+    from skisnow.ski import write_ski
 
     if out.suffix.lower() != ".json":
         raise InputError(f"--out {out}: the identified ski is written as a ski file (.json)")

@@ -15,7 +15,7 @@ from skisnow.cli._render import JsonOption, emit_json, err_console, print_table,
 
 def _resolve_model(model: str) -> Any:
     """A shipped ski name or the path of a model (``PATH``, ``PATH.npz`` or ``PATH.json``)."""
-    from skisnow.io import load_network, shipped_network
+    from skisnow.network import load_network, shipped_network
     from skisnow.ski import SHIPPED_SKIS
 
     if model in SHIPPED_SKIS:
@@ -46,8 +46,8 @@ def train(
     json_out: JsonOption = False,
 ) -> None:
     """Train the camber network h = f(x, m, x_m) on a bench file and save it."""
-    from skisnow.io import read_bench
-    from skisnow.ski import save_network, train_network
+    from skisnow.bench import read_bench
+    from skisnow.network import save_network, train_network
 
     widths_list = [w.strip() for w in widths.split(",")]
     if len(widths_list) != 6 or not all(w.isdigit() and int(w) >= 1 for w in widths_list):

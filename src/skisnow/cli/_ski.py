@@ -25,7 +25,8 @@ def resolve_profile_source(option: str, skis: list[str]) -> str:
 
 def ski_summary_rows(skis: list[str] | None = None) -> list[dict[str, Any]]:
     """Key numbers of skis (default: the shipped ones) in field units (``skis`` and ``demo``)."""
-    from skisnow.ski import SHIPPED_SKIS, closing_load, get_ski
+    from skisnow.bench import closing_load
+    from skisnow.ski import SHIPPED_SKIS, get_ski
 
     rows = []
     for name in SHIPPED_SKIS if skis is None else skis:
@@ -75,7 +76,8 @@ def skis(
             raise InputError("--figure and --out need --show SKI")
         _list_skis(json_out)
         return
-    from skisnow.ski import get_ski, ski_passport, ski_to_document, write_ski
+    from skisnow.bench import ski_passport
+    from skisnow.ski import get_ski, ski_to_document, write_ski
 
     ski = get_ski(show)
     if not (step_mm > 0):
@@ -168,8 +170,8 @@ def bench(
 ) -> None:
     """Run the virtual camber bench on a shipped ski and write the bench table."""
     from skisnow._checks import check_memory, check_option_values, check_value
-    from skisnow.io import write_bench
-    from skisnow.ski import get_ski, run_bench
+    from skisnow.bench import run_bench, write_bench
+    from skisnow.ski import get_ski
 
     sk = get_ski(ski)
     dx_mm = check_value(dx_mm, "step_along_ski", where="--dx-mm")
@@ -218,8 +220,8 @@ def metrics_documents(
 ) -> list[dict[str, Any]]:
     """Metrics (field units) of a shipped ski or of every ski in a bench file."""
     from skisnow._checks import check_value
-    from skisnow.io import read_bench
-    from skisnow.ski import SHIPPED_SKIS, ski_metrics
+    from skisnow.bench import read_bench, ski_metrics
+    from skisnow.ski import SHIPPED_SKIS
 
     body_mass_kg = check_value(body_mass_kg, "mass", where="--body-mass-kg")
     load_position_mm = check_value(load_position_mm, "load_position", where="--load-position-mm")

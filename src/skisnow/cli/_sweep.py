@@ -222,8 +222,7 @@ def report(
     """Write one self-contained HTML report of a ski (metrics, zones at standard loads, maps,
     the contact over a stride, a fleet table with --compare-with, and a linked explorer page
     with --explorer)."""
-    from skisnow.pipeline import study_ski
-    from skisnow.report import write_report
+    from skisnow.report import study_ski, write_report
     from skisnow.sweep import parse_values
 
     source = resolve_profile_source(profile_source, [ski])

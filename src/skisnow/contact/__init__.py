@@ -6,7 +6,10 @@ rotate about the load point, is pressed into an elastic half-space of equivalent
 
 Equation map (paper → function):
 
-==============================================  =========================================="""
+==============================================  ==========================================
+
+May import: ski
+"""
 
 from skisnow.contact import reference
 from skisnow.contact._beam_operator import CantileverCompliance, cantilever_compliance

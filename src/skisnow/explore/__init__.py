@@ -6,6 +6,8 @@ ski; :func:`render_explorer` packs them (:mod:`._pack`) into ONE self-contained 
 small inline script: sliders for mass, load position and snow modulus, a ski selector, the ski
 base and the deformed snow, the pressure with the zones shaded, the zone table and the Figure
 8/9-style maps with the current point marked. No server, no network, no CDN.
+
+May import: sweep
 """
 
 from skisnow.explore._data import ZONES, ExplorerGrid, explorer_dataset

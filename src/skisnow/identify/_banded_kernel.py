@@ -1,6 +1,6 @@
 """Compiled Cholesky factorisation and solves of the symmetric banded beam stiffness.
 
-The identification (:mod:`skisnow.ski._identify_model`, :mod:`skisnow.ski._identify_smooth`)
+The identification (:mod:`skisnow.identify._model`, :mod:`skisnow.identify._smooth`)
 solves the clamped Hermite-beam stiffness (bandwidth 3, upper banded storage
 ``ab[3 + i - j, j] = K[i, j]`` as :func:`scipy.linalg.solveh_banded`) tens of thousands of times
 per fit, mostly with one to three right-hand sides (Newton steps of the smoothed contact) or with

@@ -2,7 +2,7 @@
 
 For a (true or provisional) ski and a bench plan (masses × load positions, measured stations,
 noise σ) the Gauss–Newton / Fisher information of the identification at that ski: the exact
-Jacobian J of :class:`~skisnow.ski._identify_model._Problem` (the same binned load cases,
+Jacobian J of :class:`~skisnow.identify._model._Problem` (the same binned load cases,
 spline parametrisation, beam mesh and penalty rows the fit uses; σ-normalised residuals, so
 F = JᵀJ is the Fisher information of the spline parameters for Gaussian noise; Bard 1974, §7-5;
 Seber & Wild 2003, §2.1-2.2 and §5.2). Two predictions:
@@ -35,11 +35,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 from skisnow._errors import InputError
-from skisnow.ski._beam import DEFAULT_BOOT_LENGTH, DEFAULT_N_ELEMENTS
-from skisnow.ski._identify import DEFAULT_LAMBDAS, load_cases
-from skisnow.ski._identify_fit import _camber_fit, levenberg_marquardt, parameter_bounds
-from skisnow.ski._identify_model import _design, _Problem
-from skisnow.ski._skis import Ski
+from skisnow.identify._fit import _camber_fit, levenberg_marquardt, parameter_bounds
+from skisnow.identify._identify import DEFAULT_LAMBDAS, load_cases
+from skisnow.identify._model import _design, _Problem
+from skisnow.ski import DEFAULT_BOOT_LENGTH, DEFAULT_N_ELEMENTS, Ski
 
 __all__ = ["BenchPlanPrediction", "predict_identification_uncertainty"]
 
@@ -149,7 +148,7 @@ def plan_problem(
     """The identification's bench model of a bench (:class:`~skisnow.io.BenchData` of ``ski``)
     cut to the open interval ``stations`` [m]: its load cases binned as
     :func:`~skisnow.ski.identify_ski` bins them, on the mesh of ``ski``'s running surface."""
-    from skisnow.ski._identify import _bench_cases
+    from skisnow.identify._identify import _bench_cases
 
     if stations is not None:
         t = bench.table
@@ -281,7 +280,7 @@ def predict_identification_uncertainty(
     if not grid or any(not (np.isfinite(v) and v >= 0) for v in grid):
         raise InputError(f"regularisation / lambdas must be finite and >= 0, got {grid}")
 
-    from skisnow.ski._bench import run_bench
+    from skisnow.bench import run_bench
 
     bench = run_bench(ski, masses=ms, load_positions=ps, dx=dx, boot_length=boot_length,
                       n_elements=n_elements)  # fmt: skip

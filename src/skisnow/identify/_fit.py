@@ -1,6 +1,6 @@
 """The fit of the ski identification: start, homotopy, Levenberg–Marquardt, GCV choice of λ, bands.
 
-Nonlinear least squares of the bench model (:mod:`skisnow.ski._identify_model`; Kalliorinne et
+Nonlinear least squares of the bench model (:mod:`skisnow.identify._model`; Kalliorinne et
 al. 2023, §3.1, eq. 1) against every profile of the bench, with the exact Jacobian:
 
 1. Start: z0 from the lightest profile unloaded by the beam (its heights minus the deflection
@@ -23,7 +23,7 @@ al. 2023, §3.1, eq. 1) against every profile of the bench, with the exact Jacob
    the smoothed stone, the classic of version 2 ended at 1.6 σ from the true EI shape, against
    1.0 σ on the exact contact directly): the load cases up to a third, then two thirds of the mass
    range, then all of them, on the smoothed stone of width ε = 10 µm, then ε = 3, 1, 0.3,
-   0.1 µm (:mod:`skisnow.ski._identify_smooth`), at the largest λ of the grid.
+   0.1 µm (:mod:`skisnow.identify._smooth`), at the largest λ of the grid.
 3. The exact contact (the LCP): a fit at the geometric middle of the λ grid.
 4. λ by generalised cross-validation (GCV, Craven & Wahba 1979; Wahba 1990, §4.3) on the
    Gauss–Newton linearisation around that one fit: for every λ the penalised linear step from
@@ -49,7 +49,7 @@ al. 2023, §3.1, eq. 1) against every profile of the bench, with the exact Jacob
    decrement is below the noise there (a local minimum of the exact-contact misfit: classic 5 µm
    with 600 evaluations allowed stopped at 1.69 σ, and fits from the other start candidates,
    from random changes of log EI or by alternating z0 / EI steps ended at 1.68 σ or above). The
-   remedy: the smoothed contact (:mod:`skisnow.ski._identify_smooth`) restarted at the stalled
+   remedy: the smoothed contact (:mod:`skisnow.identify._smooth`) restarted at the stalled
    fit, ε = 3, 1, 0.3, 0.1 µm at λ = 1 (15 evaluations each) and on to 30, 10, 3, 1 nm while the
    smoothed stone differs from the exact contact at the polished point by more than the noise
    (:func:`smoothing_gap`, since 26cbb2c: where heavy loads press a glide zone flat, 0.1 µm is
@@ -99,11 +99,9 @@ from scipy.linalg import cho_factor, cho_solve, solveh_banded
 from scipy.optimize import minimize_scalar
 
 from skisnow._errors import ConvergenceError, InputError
-from skisnow.ski._fem import boot_load_vector
-from skisnow.ski._identify_model import _Case, _design, _Problem
-from skisnow.ski._identify_smooth import SmoothedBench
-from skisnow.ski._lcp import lower_hull_bracket
-from skisnow.ski._skis import Ski
+from skisnow.identify._model import _Case, _design, _Problem
+from skisnow.identify._smooth import SmoothedBench
+from skisnow.ski import Ski, boot_load_vector, lower_hull_bracket
 
 __all__ = [
     "BenchFit",
@@ -571,7 +569,7 @@ def fit_bench(
         # smoothest EI). The light loads touch the stone at two short zones; heavier loads
         # flatten the glide zones onto it, where the exact contact set switches with µm
         # changes of z0 and the misfit has a kink at every switch (module docstring of
-        # skisnow.ski._identify_smooth).
+        # skisnow.identify._smooth).
         # A smoothed contact that does not converge (Newton on a far start) ends the homotopy:
         # the fit goes on from its last point on the exact contact instead of stopping.
         order = sorted({c.mass for c in cases})
@@ -745,14 +743,14 @@ def parameter_bounds(problem: _Problem) -> tuple[NDArray[np.float64], NDArray[np
 _SHAPE_ITERATIONS = 12
 #: Fractions of the bench's masses whose load differences give the EI shape, in turn.
 _SHAPE_FRACTIONS = (1 / 3, 1 / 2, 1.0)
-#: Widths ε [m] of the smoothed contact (:mod:`skisnow.ski._identify_smooth`), in turn.
+#: Widths ε [m] of the smoothed contact (:mod:`skisnow.identify._smooth`), in turn.
 _HOMOTOPY = (1e-5, 3e-6, 1e-6, 3e-7, 1e-7)
 #: Widths ε [m] of the smoothed contact that polishes a fit ending above the noise, in turn.
 _POLISH = (3e-6, 1e-6, 3e-7, 1e-7)
 #: Further widths ε [m] of the polish, taken in turn while the smoothed stone still differs from
 #: the exact contact by more than the noise at the polished point (:func:`smoothing_gap`). Where
 #: a glide zone lies flat on the stone, a 0.1 µm smoothing still redistributes its reactions
-#: (module docstring of :mod:`skisnow.ski._identify_smooth`): on the skate's full sequence at 10
+#: (module docstring of :mod:`skisnow.identify._smooth`): on the skate's full sequence at 10
 #: µm (seed 1) at the fit from the true ski, χ² 31675 at ε = 0.1 µm, 16343 at 10 nm, 14315 at 3
 #: nm, 14037 at 1 nm against 13977 on the exact contact; a polish that ended at 0.1 µm ended
 #: where the exact contact was at χ² 35671 (EI 2.5 % off), and its exact fit in a worse local

@@ -41,7 +41,7 @@ unilateral contact with the rigid stone, loaded by m·g through the boot plate a
   every switch of the contact set (the glide zones pressed flat on the stone switch node by
   node with µm changes of z0), and far from the solution the damped Gauss–Newton steps
   collapse. From the default start the fit therefore runs first on a smoothed stone (a softplus
-  penalty of width ε; :mod:`skisnow.ski._identify_smooth`): the light load cases (continuation
+  penalty of width ε; :mod:`skisnow.identify._smooth`): the light load cases (continuation
   in load), then all of them with ε = 10, 3, 1, 0.3, 0.1 µm, then on the exact contact.
 * Globalisation (only when the fit ends above the noise: χ² above the discrepancy bound of
   its own residual degrees of freedom, dof + 2 (2 dof)^1/2, dof = n − tr(2H − H²) with H the
@@ -52,11 +52,11 @@ unilateral contact with the rigid stone, loaded by m·g through the boot plate a
   noise of the stone. The smoothed contact is restarted at the stalled fit (ε = 3 → 0.1 µm, a
   smoothing method for the complementarity, Chen & Mangasarian 1996, then on to 1 nm while the
   smoothed stone differs from the exact contact by more than the noise at the polished point),
-  then the exact contact again, the lower misfit kept (:mod:`skisnow.ski._identify_fit`, stage 5).
+  then the exact contact again, the lower misfit kept (:mod:`skisnow.identify._fit`, stage 5).
 * Optimiser: Levenberg–Marquardt on the normal equations (Marquardt 1963) with the exact
   Jacobian, halving a rejected step along its direction before raising the damping (a kink of
   the contact set), and a stop when the Gauss–Newton step would lower the σ-normalised sum of
-  squares by less than 0.01 (:func:`skisnow.ski._identify_fit.levenberg_marquardt` says why not
+  squares by less than 0.01 (:func:`skisnow.identify._fit.levenberg_marquardt` says why not
   SciPy's ``least_squares``).
 * Regularisation: λ on the second differences of log-EI coefficients, chosen by generalised
   cross-validation (GCV, Craven & Wahba 1979; Wahba 1990, §4.3) on the Gauss–Newton
@@ -132,9 +132,9 @@ benches worse, so they are not used.
 This module holds the public entry point :func:`identify_ski` (input checks, binning of the
 bench, the identified :class:`~skisnow.ski.Ski` with its provenance) and its result
 :class:`IdentificationResult`; the spline parametrisation, forward model and Jacobian are in
-:mod:`skisnow.ski._identify_model`, the smoothed contact of the homotopy in
-:mod:`skisnow.ski._identify_smooth`, the fit (start, homotopy, Levenberg–Marquardt, GCV,
-bands) in :mod:`skisnow.ski._identify_fit`.
+:mod:`skisnow.identify._model`, the smoothed contact of the homotopy in
+:mod:`skisnow.identify._smooth`, the fit (start, homotopy, Levenberg–Marquardt, GCV,
+bands) in :mod:`skisnow.identify._fit`.
 """
 
 from __future__ import annotations
@@ -149,17 +149,15 @@ from numpy.typing import NDArray
 
 from skisnow._errors import InputError
 from skisnow.constants import STANDARD_GRAVITY
-from skisnow.ski._beam import DEFAULT_BOOT_LENGTH, DEFAULT_N_ELEMENTS
-from skisnow.ski._fem import boot_load_vector
-from skisnow.ski._identify_fit import (
+from skisnow.identify._fit import (
     AT_NOISE,
     fit_bench,
     identified_profiles,
     refined_parameters,
     significant_decrease,
 )
-from skisnow.ski._identify_model import _bins, _Case, _hermite_matrix, _Problem
-from skisnow.ski._skis import Provenance, Ski
+from skisnow.identify._model import _bins, _Case, _hermite_matrix, _Problem
+from skisnow.ski import DEFAULT_BOOT_LENGTH, DEFAULT_N_ELEMENTS, Provenance, Ski, boot_load_vector
 
 __all__ = ["IdentificationResult", "identify_ski"]
 
@@ -377,7 +375,7 @@ def identify_ski(
     """
     t_start = time.perf_counter()
     say = progress or (lambda _msg: None)
-    from skisnow.io import BenchData
+    from skisnow.bench import BenchData
 
     if not isinstance(bench, BenchData):
         raise InputError(f"bench must be a skisnow.io.BenchData, got {type(bench).__name__}")

@@ -8,7 +8,7 @@ This module holds the binned data of a load case, the cubic B-spline parametrisa
 z0 on uniform knots, z0 without its linear part, which the bench cannot see) and the residuals of
 all load cases with their exact Jacobian by the tangent of the beam at its active set (one banded
 solve per stiffness parameter and one small KKT solve per load case), plus the penalty rows of
-the regularisation. The fit itself is in :mod:`skisnow.ski._identify_fit`.
+the regularisation. The fit itself is in :mod:`skisnow.identify._fit`.
 """
 
 from __future__ import annotations
@@ -24,14 +24,15 @@ from scipy.interpolate import BSpline
 from scipy.sparse import csr_matrix
 
 from skisnow._errors import ConvergenceError
-from skisnow.ski._banded_kernel import banded_cholesky, banded_solve
-from skisnow.ski._fem import (
-    _GAUSS4_W,
-    _GAUSS4_X,
+from skisnow.identify._banded_kernel import banded_cholesky, banded_solve
+from skisnow.ski import (
+    GAUSS4_W,
+    GAUSS4_X,
+    BeamLcp,
     banded_upper,
+    lower_hull_bracket,
     shape_functions,
 )
-from skisnow.ski._lcp import BeamLcp, lower_hull_bracket
 
 _Z_REF = 1e-3  # [m]: scale of the z0 smoothness term
 _LAMBDA_Z = 1.0
@@ -168,9 +169,9 @@ class _Problem:
         # Gauss points of every element, and the B-spline of log EI there
         le = np.diff(nodes)[:, None]
         self.le = le
-        xq = nodes[:-1, None] + le * _GAUSS4_X[None, :]
+        xq = nodes[:-1, None] + le * GAUSS4_X[None, :]
         self.phi_q = _design(self.t_e, xq.ravel()).reshape(n - 1, 4, n_stiffness)
-        xi = _GAUSS4_X[None, :]
+        xi = GAUSS4_X[None, :]
         self.bq = np.stack(
             [
                 (-6.0 + 12.0 * xi) / le**2,
@@ -180,7 +181,7 @@ class _Problem:
             ],
             axis=-1,
         )  # fmt: skip  (n_el, nq, 4): curvature per DOF
-        self.wq = _GAUSS4_W[None, :] * le  # (n_el, nq)
+        self.wq = GAUSS4_W[None, :] * le  # (n_el, nq)
         # z0: basis at nodes and at the bins; gauge: no linear part
         self.phi_z_nodes = _design(self.t_z, nodes)
         greville = (self.t_z[1:-3] + self.t_z[2:-2] + self.t_z[3:-1]) / 3.0

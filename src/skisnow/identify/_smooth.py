@@ -28,7 +28,7 @@ gaps (a short-wave redistribution of force costs the beam almost no deflection),
 0.1 µm smoothing redistributes them and tilts the ski by µm (measured on the full bench of the
 first-release classic at the true parameters: misfit 1.48 σ at ε = 0.1 µm against 1.02 σ on the
 exact contact). The smoothed stone is therefore only the path: the fit runs a decreasing
-sequence of ε and ends on the exact LCP model (:mod:`skisnow.ski._identify_fit`).
+sequence of ε and ends on the exact LCP model (:mod:`skisnow.identify._fit`).
 """
 
 from __future__ import annotations
@@ -40,8 +40,8 @@ from numpy.typing import NDArray
 from scipy.special import expit, spence
 
 from skisnow._errors import ConvergenceError
-from skisnow.ski._banded_kernel import banded_cholesky, banded_solve
-from skisnow.ski._identify_model import _Problem
+from skisnow.identify._banded_kernel import banded_cholesky, banded_solve
+from skisnow.identify._model import _Problem
 
 __all__ = ["SmoothedBench"]
 

@@ -1,36 +1,52 @@
-"""File formats: bench data tables, profiles, model files. Field units in column headers.
+"""File formats, kept for compatibility: bench tables and the camber network's model files.
 
-* :class:`BenchData`, :func:`read_bench`, :func:`write_bench` — camber-bench tables (CSV with a
-  commented JSON metadata line, or Parquet with schema metadata), validated on read.
-* :func:`save_network`, :func:`load_network`, :func:`shipped_network` — the camber network's
-  model files (``PATH.npz`` weights + ``PATH.json`` metadata; JAX is imported only when a
-  network is built); :func:`read_model_files` and friends move the arrays and the JSON safely.
+This package holds no code of its own any more. Kept for compatibility; the home of the bench
+data and their files (BENCH_COLUMNS, MIN_PROFILE_POINTS, BenchData, read_bench,
+validate_bench_table, write_bench) is :mod:`skisnow.bench`, the home of the network's model
+files (MODEL_FORMAT, MODEL_FORMAT_VERSION, load_network, metadata_checksum, model_paths,
+network_arrays, network_from_files, parse_model_bytes, read_model_files, save_network,
+shipped_network, write_model_files) is :mod:`skisnow.network`: these names are imported from
+there on first use. Nothing inside skisnow imports from here.
+
+May import: core only
 """
 
 from __future__ import annotations
 
-from skisnow.io._bench import (
-    BENCH_COLUMNS,
-    MIN_PROFILE_POINTS,
-    BenchData,
-    read_bench,
-    validate_bench_table,
-    write_bench,
-)
-from skisnow.io._model import (
-    MODEL_FORMAT,
-    MODEL_FORMAT_VERSION,
-    load_network,
-    metadata_checksum,
-    model_paths,
-    network_arrays,
-    network_from_files,
-    parse_model_bytes,
-    read_model_files,
-    save_network,
-    shipped_network,
-    write_model_files,
-)
+from skisnow._lazy import lazy_getattr
+
+_LAZY = {
+    **dict.fromkeys(
+        (
+            "BENCH_COLUMNS",
+            "MIN_PROFILE_POINTS",
+            "BenchData",
+            "read_bench",
+            "validate_bench_table",
+            "write_bench",
+        ),
+        "skisnow.bench",
+    ),
+    **dict.fromkeys(
+        (
+            "MODEL_FORMAT",
+            "MODEL_FORMAT_VERSION",
+            "load_network",
+            "metadata_checksum",
+            "model_paths",
+            "network_arrays",
+            "network_from_files",
+            "parse_model_bytes",
+            "read_model_files",
+            "save_network",
+            "shipped_network",
+            "write_model_files",
+        ),
+        "skisnow.network",
+    ),
+}
+
+__getattr__ = lazy_getattr(__name__, _LAZY)
 
 __all__ = [
     "BENCH_COLUMNS",

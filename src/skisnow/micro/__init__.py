@@ -20,6 +20,8 @@ of Cross Country Skis", Front. Mech. Eng. 7:659995 (2021):
 * elastic–perfectly-plastic flat-ice contact (Scherge et al. 2021, Fig. 3):
   :func:`elastoplastic_contact` (on the contact package's Polonsky–Keer core with a hardness
   cap), :func:`flat_plastic_area`.
+
+May import: contact
 """
 
 from skisnow.micro import _scherge2021 as scherge2021

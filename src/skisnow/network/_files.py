@@ -31,7 +31,7 @@ import numpy as np
 from skisnow._errors import FileFormatError, InputError, SolverStatus
 
 if TYPE_CHECKING:
-    from skisnow.ski import BlockNetwork, CamberNetwork
+    from skisnow.network._network import BlockNetwork, CamberNetwork
 
 __all__ = [
     "MODEL_FORMAT",
@@ -53,7 +53,7 @@ MODEL_FORMAT = "skisnow-camber-network"
 #: Version of that layout (bump on incompatible change).
 MODEL_FORMAT_VERSION = 1
 #: Package whose ``models/`` directory holds the pretrained networks of the shipped skis.
-MODELS_PACKAGE = "skisnow.ski"
+MODELS_PACKAGE = "skisnow.network"
 
 
 def model_paths(path: str | Path) -> tuple[Path, Path]:
@@ -207,7 +207,7 @@ def _require(doc: Mapping[str, Any], key: str, where: str) -> Any:
 def _members_from_arrays(
     arrays: Mapping[str, np.ndarray], architecture: Any, n_members: int, where: str
 ) -> tuple[BlockNetwork, ...]:
-    from skisnow.ski import BlockNetwork
+    from skisnow.network._network import BlockNetwork
 
     shapes = BlockNetwork.layer_shapes(architecture)
     members = []
@@ -272,7 +272,13 @@ def network_from_files(
         Foreign format, unsupported version, missing or invalid metadata, missing arrays or
         arrays of the wrong shape, dtype or with NaN/inf; ``where`` names the files.
     """
-    from skisnow.ski import Architecture, CamberNetwork, Domain, ReferenceProfile, Scaling
+    from skisnow.network._network import (
+        Architecture,
+        CamberNetwork,
+        Domain,
+        ReferenceProfile,
+        Scaling,
+    )
 
     if doc.get("format") != MODEL_FORMAT:
         raise FileFormatError(
@@ -370,7 +376,7 @@ def load_network(path: str | Path) -> CamberNetwork:
 def shipped_network(ski_name: str) -> CamberNetwork:
     """The pretrained network of a shipped ski (``'classic'`` or ``'skate'``), loaded once.
 
-    The files are ``skisnow/ski/models/<name>.npz|.json``, trained on the virtual bench of that
+    The files are ``skisnow/network/models/<name>.npz|.json``, trained on the virtual bench of that
     ski (``benchmarks/bench_network.py --retrain`` regenerates them).
 
     Raises
@@ -388,7 +394,7 @@ def shipped_network(ski_name: str) -> CamberNetwork:
         raise InputError(
             f"no shipped camber network for ski {ski_name!r}; available: {', '.join(available)}"
         )
-    where = f"shipped model skisnow/ski/models/{ski_name}"
+    where = f"shipped model skisnow/network/models/{ski_name}"
     arrays, doc = parse_model_bytes(
         (base / f"{ski_name}.npz").read_bytes(),
         (base / f"{ski_name}.json").read_text(encoding="utf-8"),

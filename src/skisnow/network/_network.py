@@ -15,7 +15,7 @@ This module reproduces that wiring (:class:`BlockNetwork`, an Equinox module) wi
 widths (:class:`Architecture`). As in MATLAB (``mapminmax``), every input and the output are
 mapped linearly to [-1, 1] over the training data; the map (:class:`Scaling`) and the trained
 (m, x_m) range (:class:`Domain`) are stored with the model (both in
-:mod:`skisnow.ski._network_scaling`). :class:`CamberNetwork` bundles one or
+:mod:`skisnow.network._scaling`). :class:`CamberNetwork` bundles one or
 a few trained members (an ensemble: the mean is the prediction, the spread an uncertainty).
 
 Units: SI inside (x, x_m, h in metres, m in kg). The camber height is the gap between the ski
@@ -39,7 +39,7 @@ import jax.numpy as jnp
 import numpy as np
 
 from skisnow._errors import DomainWarning, InputError, SolverStatus
-from skisnow.ski._network_scaling import Domain, ReferenceProfile, Scaling
+from skisnow.network._scaling import Domain, ReferenceProfile, Scaling
 
 __all__ = [
     "Architecture",

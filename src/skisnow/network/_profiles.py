@@ -8,7 +8,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from skisnow._errors import InputError
-from skisnow.ski._skis import SHIPPED_SKIS, Ski, get_ski
+from skisnow.ski import SHIPPED_SKIS, Ski, get_ski
 
 __all__ = ["camber_profile"]
 
@@ -55,7 +55,7 @@ def camber_profile(
         raise InputError(f"source must be 'beam' or 'network', got {source!r}")
     ski = ski_name if isinstance(ski_name, Ski) else get_ski(ski_name)
     if x is None:
-        from skisnow.ski._bench import bench_grid
+        from skisnow.bench import bench_grid
 
         xs = bench_grid(ski)
     else:
@@ -66,7 +66,7 @@ def camber_profile(
     if masses.ndim > 1:
         raise InputError(f"mass must be a number or a 1-D array [kg], got shape {masses.shape}")
     if source == "beam":
-        from skisnow.ski._beam import solve_beam
+        from skisnow.ski import solve_beam
 
         if masses.ndim == 1:
             heights = np.empty((masses.size, xs.size))
@@ -81,7 +81,7 @@ def camber_profile(
             f"ski {what!r}: the camber network exists only for the shipped skis "
             f"({', '.join(SHIPPED_SKIS)}); use the beam (source 'beam', --profile-source beam)"
         )
-    from skisnow.io import shipped_network
+    from skisnow.network._files import shipped_network
 
     height = shipped_network(ski_name).predict(xs, masses, load_position)
     return xs, np.asarray(height, dtype=float)

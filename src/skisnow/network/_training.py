@@ -35,9 +35,9 @@ import pandas as pd
 from jax.flatten_util import ravel_pytree
 
 from skisnow._errors import ConvergenceError, InputError, SolverStatus
-from skisnow.io import BENCH_COLUMNS, BenchData
-from skisnow.ski._levenberg_marquardt import make_lm_step
-from skisnow.ski._network import (
+from skisnow.bench import BENCH_COLUMNS, BenchData
+from skisnow.network._levenberg_marquardt import make_lm_step
+from skisnow.network._network import (
     Architecture,
     BlockNetwork,
     CamberNetwork,

@@ -6,6 +6,8 @@
 * :func:`solve_caption_case` — one caption case through the paper's pipeline;
 * :func:`zone_maps`, :func:`figure89_findings` — the rear/front maps over load × snow and the
   findings the paper reads off its Figures 8–9, as checks (the validation of the fitted skis).
+
+May import: ski, contact, pipeline
 """
 
 from skisnow.paper._captions import (

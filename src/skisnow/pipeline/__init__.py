@@ -4,8 +4,7 @@
 camber profile h = f(x, m, x_m) (eq. 1), the rigid ski pressed into elastic snow with force and
 moment balance (eq. 2–3), the contact zones and the Breitschädel (2012) 50 µm estimate. The
 sweep, ``skisnow contact``, the report, the demo and the examples call it, so the same inputs
-give the same numbers whichever door a user comes in by. :func:`study_ski` computes what the
-report of a ski shows (metrics, the cases at the standard loads, the maps' sweep).
+give the same numbers whichever door a user comes in by.
 
 Grid convention: ``n_points`` (default 4096) stations evenly spaced from the tail to the tip of
 the running surface, both ends included (:func:`stations`), each the centre of one contact cell.
@@ -13,8 +12,16 @@ the running surface, both ends included (:func:`stations`), each the centre of o
 >>> case = solve_case("skate", mass=60.0, load_position=-0.12,
 ...                   snow_modulus=100e6)                           # doctest: +SKIP
 >>> case.zones["rear"].length, case.breitschaedel["total"].length   # doctest: +SKIP
+
+May import: ski, bench, network, contact
+
+Kept for compatibility; the home of what the report of a ski shows (MAP_MASSES, MAP_MODULI,
+STANDARD_SNOWS, SkiStudy, standard_cases, study_ski: metrics, the cases at the standard loads,
+the maps' sweep) is :mod:`skisnow.report`, above the sweep it runs: these names are imported
+from there on first use.
 """
 
+from skisnow._lazy import lazy_getattr
 from skisnow.pipeline._case import DEFAULT_TOL, MODELS, SKI_MODELS, Case, solve_case
 from skisnow.pipeline._profiles import (
     DEFAULT_N_POINTS,
@@ -23,14 +30,13 @@ from skisnow.pipeline._profiles import (
     resolve_ski,
     stations,
 )
-from skisnow.pipeline._study import (
-    MAP_MASSES,
-    MAP_MODULI,
-    STANDARD_SNOWS,
-    SkiStudy,
-    standard_cases,
-    study_ski,
+
+_LAZY = dict.fromkeys(
+    ("MAP_MASSES", "MAP_MODULI", "STANDARD_SNOWS", "SkiStudy", "standard_cases", "study_ski"),
+    "skisnow.report",
 )
+
+__getattr__ = lazy_getattr(__name__, _LAZY)
 
 __all__ = [
     "DEFAULT_N_POINTS",

@@ -65,7 +65,7 @@ def _beam_profile(
     ski: object, mass: float, load_position: float, n_points: int
 ) -> NDArray[np.float64]:
     """Beam profile h [m] on the stations (cached, read-only); UnsupportedLoadError passes."""
-    from skisnow.ski import camber_profile
+    from skisnow.network import camber_profile
 
     _, h = camber_profile(
         resolve_ski(ski),
@@ -122,7 +122,7 @@ def loaded_profiles(
     if m.ndim != 1:
         raise InputError(f"masses: need a 1-D sequence [kg], got shape {m.shape}")
     if profile_source == "network":
-        from skisnow.ski import camber_profile
+        from skisnow.network import camber_profile
 
         _, heights = camber_profile(
             _network_name(ski), mass=m, load_position=float(load_position), x=x, source="network"

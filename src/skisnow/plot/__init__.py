@@ -12,6 +12,8 @@ helper writes them, :func:`save_figure` (PNG and SVG by default, no creation dat
 * :func:`topography_figure`, :func:`bearing_figure` — the micro scale;
 * :func:`plot_fleet`, :func:`plot_snow_ranking`, :func:`plot_cycle`, :func:`animate_cycle` —
   the technician workflows (a fleet, a ranking across snow, a load cycle and its animation).
+
+May import: ski, bench, network, contact
 """
 
 from skisnow.plot._contact import plot_contact

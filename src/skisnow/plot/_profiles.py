@@ -8,8 +8,9 @@ from collections.abc import Sequence
 import numpy as np
 from matplotlib.figure import Figure
 
+from skisnow.network import camber_profile
 from skisnow.plot._style import COLORS, new_figure
-from skisnow.ski import camber_profile, get_ski
+from skisnow.ski import get_ski
 
 __all__ = ["plot_camber_profiles"]
 

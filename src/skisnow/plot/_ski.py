@@ -6,8 +6,9 @@ from collections.abc import Sequence
 
 from matplotlib.figure import Figure
 
+from skisnow.bench import SkiPassport, ski_passport
 from skisnow.plot._style import COLORS, new_figure
-from skisnow.ski import Ski, SkiPassport, ski_passport
+from skisnow.ski import Ski
 
 __all__ = ["plot_passport"]
 

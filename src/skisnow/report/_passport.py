@@ -12,8 +12,8 @@ __all__ = ["passport_section"]
 def passport_section(ski: Ski, *, step: float = 0.1) -> Section:
     """EI(x) and z0(x) every ``step`` [m] with their 95 % bands (identified skis), the figure,
     and the provenance."""
+    from skisnow.bench import ski_passport
     from skisnow.plot import figure_svg, plot_passport
-    from skisnow.ski import ski_passport
 
     pp = ski_passport(ski, step=step, metrics=False)
     t = pp.table()

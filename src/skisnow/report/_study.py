@@ -14,8 +14,7 @@ from pathlib import Path
 from typing import Any
 
 from skisnow._errors import InputError
-from skisnow.pipeline._case import Case, solve_case
-from skisnow.pipeline._profiles import DEFAULT_N_POINTS, resolve_ski
+from skisnow.pipeline import DEFAULT_N_POINTS, Case, resolve_ski, solve_case
 
 #: Snows of the standard-load table [Pa]: soft new snow to hard old machine-made snow
 #: (Kalliorinne et al. 2023, §3.2: 50–350 MPa for machine-made snow after Lintzén & Edeskär).
@@ -129,7 +128,7 @@ def study_ski(
         Also solve the standard loads with the other ski model (:attr:`SkiStudy.other_cases`),
         so that the report shows how far the rigid-profile method is from the flexible ski.
     """
-    from skisnow.ski import ski_metrics
+    from skisnow.bench import ski_metrics
     from skisnow.sweep import SweepSpec, open_sweep, run_sweep
 
     s = resolve_ski(ski)

@@ -22,19 +22,24 @@ from scipy.linalg import solveh_banded
 from skisnow.ski._skis import Ski
 
 __all__ = [
+    "GAUSS4_W",
+    "GAUSS4_X",
     "ClampedBeam",
     "assemble_clamped",
+    "banded_upper",
     "beam_stiffness_matrix",
     "boot_load_vector",
     "cantilever_tip_deflection",
     "clamped_dofs",
     "hermite_interpolate",
+    "shape_functions",
     "three_point_bending_deflection",
 ]
 
-_GAUSS4_X, _GAUSS4_W = np.polynomial.legendre.leggauss(4)
-_GAUSS4_X = 0.5 * (_GAUSS4_X + 1.0)  # on [0, 1]
-_GAUSS4_W = 0.5 * _GAUSS4_W
+#: Four-point Gauss–Legendre rule on [0, 1] (points, weights) of the element integrals.
+GAUSS4_X, GAUSS4_W = np.polynomial.legendre.leggauss(4)
+GAUSS4_X = 0.5 * (GAUSS4_X + 1.0)  # on [0, 1]
+GAUSS4_W = 0.5 * GAUSS4_W
 
 
 def three_point_bending_deflection(force: float, span: float, stiffness: float) -> float:
@@ -67,7 +72,7 @@ def shape_functions(
 def element_stiffness(x_nodes: NDArray[np.float64], ei_at: object) -> NDArray[np.float64]:
     """Element stiffness matrices (n_el, 4, 4) ∫ EI N''ᵀN'' dx with 4-point Gauss-Legendre."""
     le = np.diff(x_nodes)[:, None]  # (n_el, 1)
-    xi = _GAUSS4_X[None, :]
+    xi = GAUSS4_X[None, :]
     xq = x_nodes[:-1, None] + le * xi
     ei = np.asarray(ei_at(xq), dtype=float)  # type: ignore[operator]
     b = np.stack(
@@ -79,7 +84,7 @@ def element_stiffness(x_nodes: NDArray[np.float64], ei_at: object) -> NDArray[np
         ],
         axis=-1,
     )  # (n_el, nq, 4)
-    w = (_GAUSS4_W[None, :] * le * ei)[..., None, None]
+    w = (GAUSS4_W[None, :] * le * ei)[..., None, None]
     return np.sum(w * b[..., :, None] * b[..., None, :], axis=1)
 
 

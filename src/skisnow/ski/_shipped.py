@@ -25,7 +25,7 @@ from numpy.typing import NDArray
 from skisnow import __version__
 from skisnow.ski._skis import Provenance, Ski
 
-__all__ = ["GENERATOR", "build_shipped", "write_shipped_files"]
+__all__ = ["GENERATOR", "SHIPPED_SOURCES", "build_shipped", "write_shipped_files"]
 
 #: The provenance method of files generated here.
 GENERATOR = "parametric definition (skisnow.ski._shipped)"
@@ -99,7 +99,7 @@ def _assemble(
             method=GENERATOR,
             data="none: chosen shapes, calibrated on the captions of Kalliorinne et al. 2023, "
             "Figs. 4-7 (benchmarks/calibrate_skis.py)",
-            sources=tuple(_SOURCE_LIST),
+            sources=tuple(SHIPPED_SOURCES),
             created="2026-11-21T00:00:00Z",
             software=f"skisnow {__version__}",
             details=(("boot_plate", "chosen: a boot from the balance point 300 mm back"),),
@@ -202,7 +202,8 @@ the balance point; hard-wax pocket 0.3-0.7 mm high; wax from the 0.2 mm mark at 
 45-55 cm, from the heel plate to 20-30 cm in front of the binding)."""
 
 
-_SOURCE_LIST = (
+#: The sources of the shipped skis' numbers (their files' provenance).
+SHIPPED_SOURCES: tuple[str, ...] = (
     "Kalliorinne, K., et al. (2023): SkiSelector camber bench, load sequence, contact on the "
     "stone (§3.1, Figs. 2 and 4) and on snow (Figs. 4-7)",
     "Breitschädel, F. (2012): Variation of Nordic classic ski characteristics from Norwegian "

@@ -10,6 +10,8 @@ snow_modulus_mpa, zone`` written chunk by chunk into a Zarr store (see :mod:`._s
 ...                  snow_moduli=np.arange(20e6, 401e6, 20e6))           # doctest: +SKIP
 >>> run_sweep(spec, "fig8.zarr")                                          # doctest: +SKIP
 >>> ds = open_sweep("fig8.zarr")                                          # doctest: +SKIP
+
+May import: ski, pipeline
 """
 
 from skisnow.sweep._fields import block_mean, station_fields, zone_codes

@@ -12,6 +12,8 @@ the elastic half-space with force and moment balance (eq. 2–3), grouped into z
 * load cycles: :class:`LoadHistory`, :func:`read_load_history`, :data:`TEMPLATES`,
   :func:`template_history`, :func:`run_cycle` (an xarray Dataset over time),
   :func:`kick_contact_summary`.
+
+May import: ski, bench, network, identify, pipeline
 """
 
 from skisnow.workflows._cycle import UNLOADED_MASS, ZONES, kick_contact_summary, run_cycle

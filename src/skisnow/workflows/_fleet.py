@@ -200,7 +200,7 @@ def _entry(
     n_points: int,
     ski_model: str,
 ) -> FleetEntry:
-    from skisnow.ski import ski_metrics
+    from skisnow.bench import ski_metrics
 
     x = stations(fs, n_points)
     masses = np.array([_LOADS[k] * body_mass for k in _LOADS])

@@ -60,8 +60,8 @@ def resolve_ski(spec: str | Ski | FleetSki) -> FleetSki:
             f"{spec}: neither a shipped ski ({', '.join(SHIPPED_SKIS)}) nor an existing file"
         )
     if path.suffix.lower() in _BENCH_SUFFIXES:
-        from skisnow.io import read_bench
-        from skisnow.ski import identify_ski
+        from skisnow.bench import read_bench
+        from skisnow.identify import identify_ski
 
         bench = read_bench(path)
         if len(bench.skis) != 1:

@@ -61,7 +61,7 @@ def choose_route(
         return "beam", None
     if masses.size == 0:
         return "network", None
-    from skisnow.ski import shipped_network
+    from skisnow.network import shipped_network
 
     bad = shipped_network(fs.network).domain.violations(x, masses, positions)
     if not bad:
@@ -96,7 +96,7 @@ def loaded_profiles(
     if masses.size == 0:
         return np.empty((0, x.size))
     if route == "network":
-        from skisnow.ski import shipped_network
+        from skisnow.network import shipped_network
 
         with warnings.catch_warnings():
             warnings.simplefilter("error", DomainWarning)  # choose_route guarantees the domain

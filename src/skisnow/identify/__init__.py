@@ -1,0 +1,25 @@
+"""The inverse problem: a ski's stiffness EI(x) and free camber z0(x) from its camber bench.
+
+Nonlinear least squares of the beam of :mod:`skisnow.ski` in unilateral contact with the bench
+stone (Kalliorinne et al. 2023, §3.1, eq. 1) against every profile of a bench sequence
+(:class:`~skisnow.bench.BenchData`), with the exact Jacobian, a homotopy on a smoothed contact,
+Levenberg–Marquardt, λ by generalised cross-validation and Gauss–Newton bands:
+:func:`identify_ski` → :class:`IdentificationResult` (the method: the docstring of
+:mod:`skisnow.identify._identify`); and the uncertainty of an identification predicted for a
+bench plan before measuring (Fisher information, Cramér–Rao):
+:func:`predict_identification_uncertainty` → :class:`BenchPlanPrediction`.
+
+May import: ski, bench
+"""
+
+from __future__ import annotations
+
+from skisnow.identify._bench_plan import BenchPlanPrediction, predict_identification_uncertainty
+from skisnow.identify._identify import IdentificationResult, identify_ski
+
+__all__ = [
+    "BenchPlanPrediction",
+    "IdentificationResult",
+    "identify_ski",
+    "predict_identification_uncertainty",
+]
