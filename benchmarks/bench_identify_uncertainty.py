@@ -34,7 +34,8 @@ from bench_identify_contact import QUANTITIES, contact, differences
 
 from skisnow import SkisnowError
 from skisnow.identify import _identify as ident
-from skisnow.identify._fit import identified_profiles
+from skisnow.identify import _resolution
+from skisnow.identify._bands import identified_profiles
 from skisnow.ski import get_ski
 
 
@@ -48,11 +49,12 @@ def identify(bench, max_nfev: int):
         box["fit"] = orig(problem, cases, nodes, **kw)
         return box["fit"]
 
-    ident.fit_bench = keep
+    # the first fit is made by identify_ski, the z0 refinements by _resolution
+    ident.fit_bench = _resolution.fit_bench = keep
     try:
         res = ident.identify_ski(bench, max_nfev=max_nfev)
     finally:
-        ident.fit_bench = orig
+        ident.fit_bench = _resolution.fit_bench = orig
     return res, box["problem"], box["fit"]
 
 

@@ -13,6 +13,7 @@ import pytest
 from skisnow import InputError
 from skisnow.bench import run_bench
 from skisnow.identify import _fit as ident_fit
+from skisnow.identify import _homotopy, _lm, _resolution, _start
 from skisnow.identify import _identify as ident
 from skisnow.identify._smooth import SmoothedBench
 from skisnow.ski import get_ski, read_ski, solve_beam
@@ -95,7 +96,7 @@ def test_jacobian_of_the_smoothed_contact(bench, monkeypatch: pytest.MonkeyPatch
     # the constant start: forced here) against central differences: the residuals are smooth
     # there (steps of 1 µm in z0, inside the width ε = 10 µm and far above the Newton
     # tolerance).
-    monkeypatch.setattr(ident_fit, "_stiffness_from_differences", lambda *a, **k: None)
+    monkeypatch.setattr(_start, "_stiffness_from_differences", lambda *a, **k: None)
     c = _problem(bench, element_length=0.01, n_stiffness=8, n_camber=30, lambdas=(1e3,),
                  continuation=())  # fmt: skip
     assert _check_jacobian(c, 8, 2e-3, steps=(1e-3, 1e-6)) >= 20
@@ -304,7 +305,7 @@ def test_the_z0_resolution_is_refined_until_the_fit_reaches_the_noise() -> None:
     bench = run_bench(true, masses=(20, 50, 80), load_positions=(-0.04, -0.2), noise=noise,
                       seed=1)  # fmt: skip
     res = ident.identify_ski(bench, initial=true, max_nfev=20, n_camber=100, n_camber_max=200)
-    bound = ident_fit.at_noise_bound(res.n_bins)
+    bound = _resolution.at_noise_bound(res.n_bins)
     (n0, m0), (n1, m1) = res.resolution
     assert (n0, n1) == (100, 197) and m0 > bound
     assert res.misfit == m1 <= bound and res.at_noise
@@ -328,11 +329,11 @@ def test_the_discrepancy_bound_and_the_information_criterion() -> None:
     rng = np.random.default_rng(0)
     n, k = 2000, 100
     rms = np.sqrt(np.mean(rng.standard_normal((4000, n)) ** 2, axis=1))
-    above = np.mean(rms > ident_fit.at_noise_bound(n))
+    above = np.mean(rms > _resolution.at_noise_bound(n))
     assert 0.01 < above < 0.04
     drops = rng.chisquare(k, 4000)
-    assert not any(ident_fit.significant_decrease(n + d, n, k, n) for d in drops)
-    assert ident_fit.significant_decrease(2.0 * n, n, k, n)
+    assert not any(_resolution.significant_decrease(n + d, n, k, n) for d in drops)
+    assert _resolution.significant_decrease(2.0 * n, n, k, n)
 
 
 def test_the_restart_bound_counts_the_fit_s_degrees_of_freedom() -> None:
@@ -343,7 +344,7 @@ def test_the_restart_bound_counts_the_fit_s_degrees_of_freedom() -> None:
     n, p = 600, 80
     jac = rng.standard_normal((n, p))
     pen = np.sqrt(3.0) * np.diff(np.eye(p), 2, axis=0)
-    bound, dof = ident_fit.restart_bound(jac, pen)
+    bound, dof = _homotopy.restart_bound(jac, pen)
     hat = jac @ np.linalg.solve(jac.T @ jac + pen.T @ pen, jac.T)
     eps = rng.standard_normal((4000, n))
     chi2 = np.sum((eps - eps @ hat.T) ** 2, axis=1)
@@ -397,7 +398,7 @@ def test_the_smoothed_restart_ends_where_the_smoothed_stone_is_the_exact_contact
         ident.fit_bench = orig
     problem = captured["problem"]
     smooth = SmoothedBench(problem)
-    lower, upper = ident_fit.parameter_bounds(problem)
+    lower, upper = _lm.parameter_bounds(problem)
     pen = problem.penalty_matrix(1.0)
     noise = np.sqrt(2.0 * problem.n_data)
     r_exact = c["fun"](c["p0"])
@@ -407,8 +408,8 @@ def test_the_smoothed_restart_ends_where_the_smoothed_stone_is_the_exact_contact
             return (*smooth.evaluate(p, eps, jacobian=jac), pen)
 
         # the smoothed residuals at the truth (no step taken)
-        at = ident_fit.levenberg_marquardt(residuals, c["p0"], lower, upper, max_nfev=1)
-        g = ident_fit.smoothing_gap(problem, at)
+        at = _lm.levenberg_marquardt(residuals, c["p0"], lower, upper, max_nfev=1)
+        g = _homotopy.smoothing_gap(problem, at)
         assert g == pytest.approx(abs(float(r_exact @ r_exact) - float(at.fun @ at.fun)))
         return g
 

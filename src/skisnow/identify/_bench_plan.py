@@ -35,9 +35,11 @@ import numpy as np
 from numpy.typing import NDArray
 
 from skisnow._errors import InputError
-from skisnow.identify._fit import _camber_fit, levenberg_marquardt, parameter_bounds
-from skisnow.identify._identify import DEFAULT_LAMBDAS, load_cases
+from skisnow.identify._cases import load_cases
+from skisnow.identify._lm import levenberg_marquardt, parameter_bounds
 from skisnow.identify._model import _design, _Problem
+from skisnow.identify._result import DEFAULT_LAMBDAS
+from skisnow.identify._start import _camber_fit
 from skisnow.ski import DEFAULT_BOOT_LENGTH, DEFAULT_N_ELEMENTS, Ski
 
 __all__ = ["BenchPlanPrediction", "predict_identification_uncertainty"]
@@ -148,7 +150,7 @@ def plan_problem(
     """The identification's bench model of a bench (:class:`~skisnow.io.BenchData` of ``ski``)
     cut to the open interval ``stations`` [m]: its load cases binned as
     :func:`~skisnow.ski.identify_ski` bins them, on the mesh of ``ski``'s running surface."""
-    from skisnow.identify._identify import _bench_cases
+    from skisnow.identify._cases import _bench_cases
 
     if stations is not None:
         t = bench.table

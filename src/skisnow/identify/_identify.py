@@ -56,7 +56,7 @@ unilateral contact with the rigid stone, loaded by m·g through the boot plate a
 * Optimiser: Levenberg–Marquardt on the normal equations (Marquardt 1963) with the exact
   Jacobian, halving a rejected step along its direction before raising the damping (a kink of
   the contact set), and a stop when the Gauss–Newton step would lower the σ-normalised sum of
-  squares by less than 0.01 (:func:`skisnow.identify._fit.levenberg_marquardt` says why not
+  squares by less than 0.01 (:func:`skisnow.identify._lm.levenberg_marquardt` says why not
   SciPy's ``least_squares``).
 * Regularisation: λ on the second differences of log-EI coefficients, chosen by generalised
   cross-validation (GCV, Craven & Wahba 1979; Wahba 1990, §4.3) on the Gauss–Newton
@@ -129,152 +129,33 @@ bump of 1 µm (sd 20 mm) on the true z0 changes the contact results by 1.9-2.5 %
 chosen by GCV removed the resolution floor without noise but with 10 µm noise made the user
 benches worse, so they are not used.
 
-This module holds the public entry point :func:`identify_ski` (input checks, binning of the
-bench, the identified :class:`~skisnow.ski.Ski` with its provenance) and its result
-:class:`IdentificationResult`; the spline parametrisation, forward model and Jacobian are in
-:mod:`skisnow.identify._model`, the smoothed contact of the homotopy in
-:mod:`skisnow.identify._smooth`, the fit (start, homotopy, Levenberg–Marquardt, GCV,
-bands) in :mod:`skisnow.identify._fit`.
+This module holds the public entry point :func:`identify_ski` (input checks, the identified
+:class:`~skisnow.ski.Ski` with its provenance); its result :class:`IdentificationResult` is in
+:mod:`skisnow.identify._result`, the binned load cases in :mod:`skisnow.identify._cases`, the
+spline parametrisation, forward model and Jacobian in :mod:`skisnow.identify._model`, the
+smoothed contact of the homotopy in :mod:`skisnow.identify._smooth`, the fit (start, homotopy,
+Levenberg–Marquardt, GCV, bands, restart) in :mod:`skisnow.identify._fit` and the modules it
+names, the z0 resolution in :mod:`skisnow.identify._resolution`.
 """
 
 from __future__ import annotations
 
 import time
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
-from numpy.typing import NDArray
 
 from skisnow._errors import InputError
-from skisnow.constants import STANDARD_GRAVITY
-from skisnow.identify._fit import (
-    AT_NOISE,
-    fit_bench,
-    identified_profiles,
-    refined_parameters,
-    significant_decrease,
-)
-from skisnow.identify._model import _bins, _Case, _hermite_matrix, _Problem
-from skisnow.ski import DEFAULT_BOOT_LENGTH, DEFAULT_N_ELEMENTS, Provenance, Ski, boot_load_vector
+from skisnow.identify._bands import identified_profiles
+from skisnow.identify._cases import _bench_cases, load_cases
+from skisnow.identify._fit import fit_bench
+from skisnow.identify._model import _Problem
+from skisnow.identify._resolution import AT_NOISE, refine_resolution
+from skisnow.identify._result import DEFAULT_LAMBDAS, IdentificationResult
+from skisnow.ski import DEFAULT_BOOT_LENGTH, DEFAULT_N_ELEMENTS, Provenance, Ski
 
 __all__ = ["IdentificationResult", "identify_ski"]
-
-#: Default λ grid of the GCV search (penalty on second differences of log-EI coefficients, in
-#: units of the σ-normalised misfit).
-DEFAULT_LAMBDAS: tuple[float, ...] = (1e5, 1e4, 1e3, 1e2, 1e1, 1.0, 0.1)
-
-
-# --------------------------------------------------------------------------- result
-
-
-@dataclass(frozen=True, kw_only=True)
-class IdentificationResult:
-    """An identified ski and how it was obtained (SI units).
-
-    Attributes
-    ----------
-    ski
-        The identified :class:`Ski` (EI(x), z0(x) resting on the plane, their standard
-        deviations ``stiffness_log_sd``/``camber_sd``, provenance).
-    regularisation
-        The chosen λ (penalty on second differences of log-EI coefficients).
-    criterion
-        How λ was chosen (``'gcv'`` or ``'given'``).
-    gcv
-        ``((λ, GCV score, misfit rms / σ, effective degrees of freedom), ...)`` of the search:
-        of the Gauss–Newton linearisation around the fit at the middle of the grid, and for the
-        chosen λ of its own fit.
-    noise
-        Bench noise σ [m] used to normalise residuals (estimated from the scatter inside bins,
-        or given).
-    residual_rms
-        RMS of model - data over all samples [m] (from the bins and their scatter).
-    n_cases, n_samples, n_parameters
-        Load cases, bench samples and fitted parameters.
-    n_evaluations, converged, message
-        Optimiser evaluations of the final fit, its status and message.
-    seconds
-        Wall time of the identification.
-    misfit
-        RMS of the σ-normalised residuals of the bins at the fit (each bin mean weighted by
-        the square root of its count): 1 ± (2 n)^-1/2 for a fit at the noise, n bins.
-    n_bins
-        Bins of the fit (the n of ``misfit``).
-    resolution
-        ``((n_camber, misfit), ...)`` of each z0 resolution fitted, in turn (the discrepancy
-        principle: refined while above the noise); the ski's is the provenance's ``n_camber``
-        (a last refinement that does not lower the information criterion is not kept).
-    warnings
-        Said when the fit is not at the noise (``misfit`` above :data:`AT_NOISE`): the
-        identified ski may be a local minimum of the misfit, not the ski on the bench.
-    """
-
-    ski: Ski
-    regularisation: float
-    criterion: str
-    gcv: tuple[tuple[float, float, float, float], ...]
-    noise: float
-    residual_rms: float
-    n_cases: int
-    n_samples: int
-    n_parameters: int
-    n_evaluations: int
-    converged: bool
-    message: str
-    seconds: float
-    misfit: float = float("nan")
-    warnings: tuple[str, ...] = ()
-    resolution: tuple[tuple[int, float], ...] = ()
-    n_bins: int = 0
-
-    @property
-    def at_noise(self) -> bool:
-        """Whether the fit explains the bench down to its noise (no warning)."""
-        return not self.warnings
-
-
-# --------------------------------------------------------------------------- entry point
-
-
-def _bench_cases(bench: Any, name: str) -> list[tuple[float, float, NDArray, NDArray]]:
-    t = bench.table[bench.table["ski"] == name]
-    out = []
-    for (m, p), grp in t.groupby(["mass_kg", "load_position_mm"], sort=True):
-        out.append(
-            (float(m), float(p) * 1e-3, grp["x_mm"].to_numpy() * 1e-3,
-             grp["height_mm"].to_numpy() * 1e-3)
-        )  # fmt: skip
-    return out
-
-
-def load_cases(
-    raw: Sequence[tuple[float, float, NDArray[np.float64], NDArray[np.float64]]],
-    nodes: NDArray[np.float64],
-    boot_length: float,
-    bin_width: float,
-) -> tuple[list[_Case], float, int, int]:
-    """The binned load cases of the fit from raw profiles ``(mass [kg], x_m [m], x [m], h [m])``
-    on the beam mesh ``nodes``: ``(cases, scatter sum of squares, samples, scatter degrees of
-    freedom)`` (also used by :func:`~skisnow.ski.predict_identification_uncertainty`)."""
-    cases, scatter, n_samples, scatter_dof = [], 0.0, 0, 0
-    for m, p, xs, hs in raw:
-        xb, hb, cnt, ss, dof_ = _bins(xs, hs, bin_width)
-        scatter += ss
-        scatter_dof += dof_
-        n_samples += xs.size
-        force = m * STANDARD_GRAVITY
-        f_boot = boot_load_vector(nodes, force, p, boot_length, "uniform")
-        cases.append(
-            _Case(
-                mass=m, position=p, x=xb, h=hb, w=np.sqrt(cnt), force=force, f_boot=f_boot,
-                f_total=-float(np.sum(f_boot[0::2])),
-                m_total=-float(np.sum(f_boot[0::2] * nodes + f_boot[1::2])),
-                hermite=_hermite_matrix(nodes, xb),
-            )
-        )  # fmt: skip
-    return cases, scatter, n_samples, scatter_dof
 
 
 def identify_ski(
@@ -433,30 +314,11 @@ def identify_ski(
         continuation=continuation, say=say,
     )  # fmt: skip
     fitted = fit_bench(problem, cases, nodes, initial=initial, **options)
-    # The z0 resolution by the discrepancy principle (Morozov 1966): while the fit stays above
-    # the noise, the z0 knot spacing is halved (the coarse fit is exactly a spline of the fine
-    # basis, the start of the fine fit), up to n_camber_max coefficients; a refinement is kept
-    # only if it lowers the Bayesian information criterion (Schwarz 1978).
-    resolution = [(problem.n_z, float(fitted.solution.misfit_rms))]
-    while 2 * problem.n_z - 3 <= n_camber_max:
-        chi2_fit, bound = float(fitted.solution.fun @ fitted.solution.fun), fitted.chi2_bound
-        if chi2_fit <= bound:
-            break
-        fine = _Problem(cases, nodes, n_stiffness, 2 * problem.n_z - 3, sigma)
-        say(
-            f"χ² {chi2_fit:.0f} above the noise (discrepancy bound {bound:.0f}): z0 on "
-            f"{fine.n_z} coefficients"
-        )
-        trial = fit_bench(
-            fine, cases, nodes, initial=None,
-            start_parameters=refined_parameters(problem, fine, fitted.solution.x), **options,
-        )  # fmt: skip
-        resolution.append((fine.n_z, float(trial.solution.misfit_rms)))
-        chi2 = [float(f.solution.fun @ f.solution.fun) for f in (fitted, trial)]
-        if not significant_decrease(chi2[0], chi2[1], fine.n_z - problem.n_z, problem.n_data):
-            say(f"z0 on {fine.n_z} coefficients: not significantly better, not kept")
-            break
-        problem, fitted = fine, trial
+    # The z0 resolution by the discrepancy principle (Morozov 1966; Schwarz 1978)
+    problem, fitted, resolution = refine_resolution(
+        problem, fitted, cases, nodes, n_stiffness=n_stiffness, sigma=sigma,
+        n_camber_max=n_camber_max, options=options,
+    )  # fmt: skip
     sol, lam, records, r = fitted.solution, fitted.regularisation, fitted.records, fitted.residuals
 
     # -- the identified ski
