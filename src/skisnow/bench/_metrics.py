@@ -4,8 +4,8 @@
 and the 50 µm contact lengths of Breitschädel (2012, Procedia Eng. 34, 391-396) under half and
 full body weight, computed with the array metrics of :mod:`skisnow.ski._metrics` on profiles
 from :func:`~skisnow.ski.solve_beam` (a :class:`~skisnow.ski.Ski`) or interpolated from a
-:class:`~skisnow.io.BenchData` (its queries :meth:`~skisnow.io.BenchData.heights_at`,
-:meth:`~skisnow.io.BenchData.profile_at_mass`, :meth:`~skisnow.io.BenchData.kick_zone_mm`).
+:class:`~skisnow.bench.BenchData` (its queries :meth:`~skisnow.bench.BenchData.heights_at`,
+:meth:`~skisnow.bench.BenchData.profile_at_mass`, :meth:`~skisnow.bench.BenchData.kick_zone_mm`).
 :func:`closing_load` bisects the beam; :func:`closing_load_from_bench` reads the bench. SI units;
 :meth:`SkiMetrics.as_field_units` converts for tables and JSON.
 """
@@ -216,7 +216,7 @@ def ski_metrics(
     Parameters
     ----------
     source
-        a :class:`Ski`, a shipped ski name, or :class:`~skisnow.io.BenchData`.
+        a :class:`Ski`, a shipped ski name, or :class:`~skisnow.bench.BenchData`.
     body_mass
         the skier's mass [kg] (half and full body weight are applied).
     load_position

@@ -2,10 +2,10 @@
 
 What a maker or a service technician reads off a ski: its bending stiffness EI(x) and free camber
 z0(x) along the running surface (Euler–Bernoulli beam of Kalliorinne et al. 2023, §3.1), with
-95 % bands where the ski was identified from bench data (:func:`skisnow.ski.identify_ski`:
+95 % bands where the ski was identified from bench data (:func:`skisnow.identify.identify_ski`:
 EI·exp(±1.96·sd of log EI), z0 ± 1.96·sd), and the bench metrics of Breitschädel (2012): camber
 height at half and full body weight, wax-pocket lengths, closing load, stiffness k, contact
-lengths (:func:`skisnow.ski.ski_metrics`).
+lengths (:func:`skisnow.bench.ski_metrics`).
 """
 
 from __future__ import annotations
@@ -35,7 +35,7 @@ class SkiPassport:
         stiffness, stiffness_low, stiffness_high: EI and its 95 % band [N m²] (band = EI where
             the ski carries no uncertainty).
         camber, camber_low, camber_high: z0 and its 95 % band [m].
-        metrics: :meth:`skisnow.ski.SkiMetrics.as_field_units` at ``body_mass`` /
+        metrics: :meth:`skisnow.bench.SkiMetrics.as_field_units` at ``body_mass`` /
             ``load_position`` (field units), or ``None`` if the beam could not carry the load.
     """
 

@@ -2,7 +2,7 @@
 
 A table has the columns :data:`BENCH_COLUMNS` in field units (see :mod:`skisnow.bench._data` for
 their meaning). :func:`validate_bench_table` is the one definition of a valid table: the file
-readers, :class:`~skisnow.io.BenchData` and :func:`~skisnow.ski.train_network` all call it.
+readers, :class:`~skisnow.bench.BenchData` and :func:`~skisnow.network.train_network` all call it.
 Every defect raises :class:`~skisnow.FileFormatError` (impossible) or
 :class:`~skisnow.ImplausibleValueError` (implausible, overridable) naming the file, the row and
 the column.

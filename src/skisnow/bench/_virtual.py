@@ -144,7 +144,7 @@ def run_bench(
         "balance_point": "x_mm = 0; x_mm and load_position_mm positive toward the tip",
         "kick_zone_mm": None if ski.kick_zone is None else [v * 1e3 for v in ski.kick_zone],
         "source": "virtual bench: skisnow Euler-Bernoulli beam on a rigid plane",
-        "device": "skisnow.ski.run_bench",
+        "device": "skisnow.ski.run_bench",  # what bench files record (kept when it moved)
         "skisnow_version": __version__,
         "boot_length_mm": boot_length * 1e3,
         "n_elements": int(n_elements),

@@ -1,6 +1,6 @@
 """``skisnow bench-plan``: how well would ``skisnow identify`` determine EI(x) and z0(x) from a
 bench plan, before measuring (thin: parse the plans, call
-:func:`skisnow.ski.predict_identification_uncertainty`, render)."""
+:func:`skisnow.identify.predict_identification_uncertainty`, render)."""
 
 from __future__ import annotations
 

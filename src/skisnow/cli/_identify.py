@@ -1,5 +1,5 @@
 """``skisnow identify``: EI(x) and z0(x) of a ski from its camber-bench file (thin: parse, call
-:func:`skisnow.ski.identify_ski`, write the ski file, render)."""
+:func:`skisnow.identify.identify_ski`, write the ski file, render)."""
 
 from __future__ import annotations
 

@@ -198,7 +198,7 @@ def solve_contact(
         Stations along the ski [m], uniformly spaced, increasing (positive toward the tip).
     height
         Rigid profile h [m] (the loaded camber height, e.g. from
-        :func:`skisnow.ski.camber_profile`): shape ``(nx,)``, uniform across the width; or, for
+        :func:`skisnow.network.camber_profile`): shape ``(nx,)``, uniform across the width; or, for
         ``model='surface'`` with ``y`` given, a full ``(nx, ny)`` surface (e.g. a sphere).
     load
         Total normal force W = m·g₀ [N] (required for 'moment' and 'load' control).

@@ -1,4 +1,5 @@
-"""Bench planning: the uncertainty of :func:`~skisnow.ski.identify_ski` predicted before measuring.
+"""Bench planning: the uncertainty of :func:`~skisnow.identify.identify_ski` predicted before
+measuring.
 
 For a (true or provisional) ski and a bench plan (masses × load positions, measured stations,
 noise σ) the Gauss–Newton / Fisher information of the identification at that ski: the exact
@@ -54,7 +55,7 @@ ESTIMABLE_TOLERANCE = 1e-6
 
 @dataclass(frozen=True, kw_only=True)
 class BenchPlanPrediction:
-    """Predicted accuracy of :func:`~skisnow.ski.identify_ski` on a bench plan (SI units).
+    """Predicted accuracy of :func:`~skisnow.identify.identify_ski` on a bench plan (SI units).
 
     Attributes
     ----------
@@ -147,9 +148,9 @@ def plan_problem(
     boot_length: float = DEFAULT_BOOT_LENGTH,
     n_elements: int = DEFAULT_N_ELEMENTS,
 ) -> _Problem:
-    """The identification's bench model of a bench (:class:`~skisnow.io.BenchData` of ``ski``)
+    """The identification's bench model of a bench (:class:`~skisnow.bench.BenchData` of ``ski``)
     cut to the open interval ``stations`` [m]: its load cases binned as
-    :func:`~skisnow.ski.identify_ski` bins them, on the mesh of ``ski``'s running surface."""
+    :func:`~skisnow.identify.identify_ski` bins them, on the mesh of ``ski``'s running surface."""
     from skisnow.identify._cases import _bench_cases
 
     if stations is not None:
@@ -164,7 +165,7 @@ def plan_problem(
 
 def ski_parameters(problem: _Problem, ski: Ski) -> NDArray[np.float64]:
     """The spline parameters of ``ski`` in ``problem``: log EI and z0 projected at the nodes, as
-    :func:`~skisnow.ski.identify_ski` projects its ``initial`` ski."""
+    :func:`~skisnow.identify.identify_ski` projects its ``initial`` ski."""
     nodes = problem.nodes
     theta_e = np.linalg.lstsq(_design(problem.t_e, nodes), np.log(ski.stiffness(nodes)),
                               rcond=None)[0]  # fmt: skip
@@ -203,7 +204,7 @@ def predict_identification_uncertainty(
     linearisation: str = "fit",
     max_nfev: int = 30,
 ) -> BenchPlanPrediction:
-    """Predict the uncertainty of :func:`~skisnow.ski.identify_ski` for a bench plan.
+    """Predict the uncertainty of :func:`~skisnow.identify.identify_ski` for a bench plan.
 
     The Gauss–Newton (Fisher information) covariance of the identification's spline parameters
     at ``ski`` (Bard 1974, §7-5; Seber & Wild 2003, §2.1, §5.2): from the exact Jacobian of the
@@ -229,7 +230,7 @@ def predict_identification_uncertainty(
     dx
         Sampling step of the bench [m] (samples per bin weight the bins).
     bin_width, n_stiffness, n_camber, lambdas
-        As in :func:`~skisnow.ski.identify_ski`.
+        As in :func:`~skisnow.identify.identify_ski`.
     regularisation
         λ of the log-EI smoothness; default the λ of ``lambdas`` with the smallest expected GCV.
     boot_length, n_elements

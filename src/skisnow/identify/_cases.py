@@ -34,7 +34,7 @@ def load_cases(
 ) -> tuple[list[_Case], float, int, int]:
     """The binned load cases of the fit from raw profiles ``(mass [kg], x_m [m], x [m], h [m])``
     on the beam mesh ``nodes``: ``(cases, scatter sum of squares, samples, scatter degrees of
-    freedom)`` (also used by :func:`~skisnow.ski.predict_identification_uncertainty`)."""
+    freedom)`` (also used by :func:`~skisnow.identify.predict_identification_uncertainty`)."""
     cases, scatter, n_samples, scatter_dof = [], 0.0, 0, 0
     for m, p, xs, hs in raw:
         xb, hb, cnt, ss, dof_ = _bins(xs, hs, bin_width)

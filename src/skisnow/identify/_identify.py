@@ -193,7 +193,7 @@ def identify_ski(
     Parameters
     ----------
     bench
-        :class:`~skisnow.io.BenchData` (any masses and load positions; profiles may miss the
+        :class:`~skisnow.bench.BenchData` (any masses and load positions; profiles may miss the
         tip and the tail).
     ski
         Which ski of a multi-ski bench.
@@ -259,7 +259,7 @@ def identify_ski(
     from skisnow.bench import BenchData
 
     if not isinstance(bench, BenchData):
-        raise InputError(f"bench must be a skisnow.io.BenchData, got {type(bench).__name__}")
+        raise InputError(f"bench must be a skisnow.bench.BenchData, got {type(bench).__name__}")
     label = bench.ski_name(ski)
     md = bench.metadata if bench.metadata.get("ski") == label else {}
     raw = _bench_cases(bench, label)
@@ -354,7 +354,7 @@ def identify_ski(
             f"{xmin * 1e3:.0f}..{xmax * 1e3:.0f} mm. Bands: 95 % (Gauss-Newton, noise only)."
         ),
         provenance=Provenance(
-            method="identified from camber-bench data (skisnow.ski.identify_ski: nonlinear "
+            method="identified from camber-bench data (skisnow.identify.identify_ski: nonlinear "
             "least squares of the beam on the bench stone, GCV regularisation)",
             data=(source or f"bench of ski {label!r}")
             + f"; {len(cases)} profiles, {n_samples} samples",

@@ -1,14 +1,14 @@
 """The forward model of the ski identification: the bench beam, its spline parameters, its Jacobian.
 
 The bench itself (Kalliorinne et al. 2023, §3.1, eq. 1 h = f(x, m, x_m)) as a function of the
-parameters of :func:`~skisnow.ski.identify_ski`: an Euler–Bernoulli beam with stiffness EI(x) and
-stress-free shape z0(x), free-floating in unilateral contact with the rigid stone, loaded by m·g
-through the boot plate at x_m (:mod:`skisnow.ski._beam`, same Hermite elements and exact LCP).
-This module holds the binned data of a load case, the cubic B-spline parametrisation (log EI and
-z0 on uniform knots, z0 without its linear part, which the bench cannot see) and the residuals of
-all load cases with their exact Jacobian by the tangent of the beam at its active set (one banded
-solve per stiffness parameter and one small KKT solve per load case), plus the penalty rows of
-the regularisation. The fit itself is in :mod:`skisnow.identify._fit`.
+parameters of :func:`~skisnow.identify.identify_ski`: an Euler–Bernoulli beam with stiffness EI(x)
+and stress-free shape z0(x), free-floating in unilateral contact with the rigid stone, loaded by m·g
+through the boot plate at x_m (:mod:`skisnow.ski._beam`, same Hermite elements and exact LCP). This
+module holds the binned data of a load case, the cubic B-spline parametrisation (log EI and z0 on
+uniform knots, z0 without its linear part, which the bench cannot see) and the residuals of all load
+cases with their exact Jacobian by the tangent of the beam at its active set (one banded solve per
+stiffness parameter and one small KKT solve per load case), plus the penalty rows of the
+regularisation. The fit itself is in :mod:`skisnow.identify._fit`.
 """
 
 from __future__ import annotations

@@ -7,9 +7,9 @@ of the ``.npz`` bytes, so a truncated or corrupted weights file is detected befo
 
 Two layers: :func:`write_model_files` / :func:`read_model_files` / :func:`parse_model_bytes`
 move arrays and a JSON document safely and know nothing of their meaning; :func:`save_network`,
-:func:`load_network` and :func:`shipped_network` map a :class:`skisnow.ski.CamberNetwork` (the
+:func:`load_network` and :func:`shipped_network` map a :class:`skisnow.network.CamberNetwork` (the
 model, which knows nothing of files) to and from that layout. Array names:
-``member{k}/{layer}/weight|bias`` (layers as :meth:`skisnow.ski.BlockNetwork.layers` names them)
+``member{k}/{layer}/weight|bias`` (layers as :meth:`skisnow.network.BlockNetwork.layers` names them)
 and ``reference/height``.
 """
 
@@ -264,7 +264,8 @@ def _check_numbers(scaling: Any, domain: Any, where: str) -> None:
 def network_from_files(
     arrays: Mapping[str, np.ndarray], doc: Mapping[str, Any], where: str
 ) -> CamberNetwork:
-    """Rebuild a :class:`~skisnow.ski.CamberNetwork` from the .npz arrays and the .json document.
+    """Rebuild a :class:`~skisnow.network.CamberNetwork` from the .npz arrays and the .json
+    document.
 
     Raises
     ------

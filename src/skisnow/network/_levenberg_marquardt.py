@@ -1,6 +1,6 @@
 """One Levenberg–Marquardt step for least squares in JAX, as MATLAB's ``trainlm`` takes it.
 
-Used by :func:`skisnow.ski.train_network` for the second-order phase of the camber network's
+Used by :func:`skisnow.network.train_network` for the second-order phase of the camber network's
 training (Kalliorinne et al. 2023, §3.1, trained with MATLAB's default ``trainlm``; Marquardt
 1963). Why not a library solver is said in :func:`make_lm_step`.
 """

@@ -159,7 +159,7 @@ class BlockNetwork(eqx.Module):
             a.collapse[-1] + a.camber[-1], "scalar", key=keys[6], dtype=f64
         )
 
-    # Layers by name: what a model file stores (see skisnow.io.save_network).
+    # Layers by name: what a model file stores (see skisnow.network.save_network).
     def layers(self) -> list[tuple[str, eqx.nn.Linear]]:
         """The seven layers as ``(name, layer)``: ``load``, ``collapse0..2``, ``camber0..1``,
         ``prediction`` (the names of the model file's arrays)."""
@@ -258,7 +258,7 @@ class CamberNetwork:
 
     ``metadata`` holds the ski name, the sha256 of the training data, the seed, the measured
     errors (µm) on the held-out load conditions and the training time (see
-    :func:`skisnow.ski.train_network`).
+    :func:`skisnow.network.train_network`).
     """
 
     architecture: Architecture
@@ -276,7 +276,7 @@ class CamberNetwork:
     @property
     def status(self) -> SolverStatus | None:
         """How the training ended (:class:`~skisnow.SolverStatus`, from ``metadata["status"]``
-        written by :func:`skisnow.ski.train_network`); ``None`` for a network whose metadata
+        written by :func:`skisnow.network.train_network`); ``None`` for a network whose metadata
         does not say (trained before the status was recorded)."""
         value = self.metadata.get("status")
         return None if value is None else SolverStatus(value)

@@ -70,13 +70,13 @@ class TrainingProgress:
 
 
 def _bench_table(bench: BenchData | pd.DataFrame) -> pd.DataFrame:
-    """The validated table of one ski: :class:`~skisnow.io.BenchData`'s validation (the one
+    """The validated table of one ski: :class:`~skisnow.bench.BenchData`'s validation (the one
     definition of a valid bench table) plus the training's own rule, one ski per network."""
     if isinstance(bench, pd.DataFrame):
         bench = BenchData(bench)  # validates (FileFormatError naming the row and column)
     elif not isinstance(bench, BenchData):
         raise InputError(
-            "bench must be a skisnow.io.BenchData or a pandas DataFrame, "
+            "bench must be a skisnow.bench.BenchData or a pandas DataFrame, "
             f"got {type(bench).__name__}"
         )
     if len(bench.skis) != 1:
@@ -168,7 +168,7 @@ def train_network(
     Parameters
     ----------
     bench
-        :class:`skisnow.io.BenchData` (or its ``table``): columns ``ski, mass_kg,
+        :class:`skisnow.bench.BenchData` (or its ``table``): columns ``ski, mass_kg,
         load_position_mm, x_mm, height_mm``, one ski, several load conditions.
     seed
         Seeds the validation split, the initial weights and the LM subsample.
@@ -217,7 +217,7 @@ def train_network(
     Raises
     ------
     FileFormatError
-        The table fails the bench validation (:func:`skisnow.io.validate_bench_table`).
+        The table fails the bench validation (:func:`skisnow.bench.validate_bench_table`).
     InputError
         Several skis, fewer than 3 load conditions, or invalid options.
     ConvergenceError

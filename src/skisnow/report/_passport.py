@@ -1,5 +1,5 @@
 """Report section of the ski passport: EI(x) and z0(x) with their bands, and where they came
-from (the ski file's provenance). Renders :func:`skisnow.ski.ski_passport`; computes nothing."""
+from (the ski file's provenance). Renders :func:`skisnow.bench.ski_passport`; computes nothing."""
 
 from __future__ import annotations
 

@@ -1,7 +1,7 @@
 """The HTML report of one ski: practitioner metrics, zones at standard loads, maps.
 
 One self-contained file (inline CSS and SVG, no scripts, no external resources) that a service
-technician can mail or open offline. It renders a :class:`skisnow.pipeline.SkiStudy` and
+technician can mail or open offline. It renders a :class:`skisnow.report.SkiStudy` and
 computes nothing:
 
 1. the ski and the practitioner metrics of the virtual bench (camber height, wax pocket,
@@ -213,7 +213,7 @@ def _explorer_section(explorer: str) -> Section:
 def build_report(
     study: Any, *, cycles: Sequence[Any] = (), fleet: Any = None, explorer: str | None = None
 ) -> str:
-    """The report of a :class:`skisnow.pipeline.SkiStudy` as an HTML string.
+    """The report of a :class:`skisnow.report.SkiStudy` as an HTML string.
 
     ``cycles``: load cycles of the ski (:func:`skisnow.workflows.run_cycle` Datasets, e.g. the
     stride at the athlete's weight); ``fleet``: a :class:`skisnow.workflows.FleetComparison`
@@ -253,7 +253,7 @@ def write_report(
     fleet: Any = None,
     explorer: str | None = None,
 ) -> Path:
-    """Write ``{out_dir}/{ski}_report.html`` of a :class:`skisnow.pipeline.SkiStudy` (with the
+    """Write ``{out_dir}/{ski}_report.html`` of a :class:`skisnow.report.SkiStudy` (with the
     optional ``cycles`` and ``fleet`` sections of :func:`build_report`); return its path."""
     from skisnow._atomic import atomic_write
 

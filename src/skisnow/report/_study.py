@@ -35,7 +35,7 @@ class SkiStudy:
     body_mass, load_position
         The skier's mass [kg] and the load position x_m [m].
     metrics
-        :class:`~skisnow.ski.SkiMetrics` of the virtual bench (beam) at ``body_mass``.
+        :class:`~skisnow.bench.SkiMetrics` of the virtual bench (beam) at ``body_mass``.
     cases
         The standard loads: half then full body weight, each on every snow (ascending).
     maps

@@ -13,7 +13,7 @@ Procedia Eng. 34, 391-396) tabulated for national-team skis:
   (Kalliorinne et al. 2023, §1 and §3.2), split into rear / middle (kick zone) / front.
 
 All functions take arrays in SI (m, kg) and return SI. The closing load and the metrics of one
-ski from its beam or a bench file (:func:`~skisnow.ski.ski_metrics`) are in
+ski from its beam or a bench file (:func:`~skisnow.bench.ski_metrics`) are in
 :mod:`skisnow.bench._metrics`; the practitioners' default load case is half or full body
 weight 80 mm behind the balance point (:data:`DEFAULT_METRIC_POSITION`).
 """

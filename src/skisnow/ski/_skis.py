@@ -55,7 +55,7 @@ class Provenance:
 
     Attributes:
         method: how the numbers were made, e.g. ``'parametric definition'``, ``'identified
-            from bench data (skisnow.ski.identify_ski)'``, ``'measured'``.
+            from bench data (skisnow.identify.identify_ski)'``, ``'measured'``.
         data: what data they came from (file names, content hashes, load cases), free text.
         sources: citations and references, one per entry.
         created: ISO 8601 UTC time stamp of creation (empty if unknown).

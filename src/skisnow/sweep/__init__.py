@@ -1,9 +1,9 @@
 """Sweeps of the contact over ski, load and snow, on Dask, resumable, as xarray datasets.
 
-Each point of a sweep is a loaded camber profile (``skisnow.ski.camber_profile``, network or beam)
-and a contact solve on elastic snow (``skisnow.contact.solve_contact``, force and moment balance,
-Kalliorinne et al. 2023, eq. 2–3), summarised per zone (``skisnow.contact.contact_zones``). The
-result is an :class:`xarray.Dataset` with dims ``ski, mass_kg, load_position_mm,
+Each point of a sweep is a loaded camber profile (``skisnow.network.camber_profile``, network or
+beam) and a contact solve on elastic snow (``skisnow.contact.solve_contact``, force and moment
+balance, Kalliorinne et al. 2023, eq. 2–3), summarised per zone (``skisnow.contact.contact_zones``).
+The result is an :class:`xarray.Dataset` with dims ``ski, mass_kg, load_position_mm,
 snow_modulus_mpa, zone`` written chunk by chunk into a Zarr store (see :mod:`._store`).
 
 >>> spec = SweepSpec(skis=("skate",), masses=range(5, 131), load_positions=(-0.12,),

@@ -21,7 +21,7 @@ from skisnow.materials import BASE
 
 #: Contact models the sweep can ask the contact solver for.
 MODELS: tuple[str, ...] = ("strip", "surface")
-#: Where the loaded camber profile comes from (``skisnow.ski.camber_profile(source=...)``).
+#: Where the loaded camber profile comes from (``skisnow.network.camber_profile(source=...)``).
 PROFILE_SOURCES: tuple[str, ...] = ("network", "beam")
 #: The zones reported for every contact solution (``skisnow.contact.contact_zones``).
 ZONES: tuple[str, ...] = ("rear", "middle", "front", "total")

@@ -2,7 +2,7 @@
 
 For each ski of a fleet, one athlete (body mass m) and the day's snow (E): the bench metrics a
 technician reads (camber under ½ and 1 body weight, wax-pocket length, closing load, stiffness;
-:func:`skisnow.ski.ski_metrics`) and the apparent contact at ½ m and m (Kalliorinne et al.
+:func:`skisnow.bench.ski_metrics`) and the apparent contact at ½ m and m (Kalliorinne et al.
 2023: loaded profile, eq. 1, on the elastic half-space with force and moment balance, eq. 2–3):
 zone lengths, areas, mean and peak pressures, load shares, and the kick-zone contact. Then a
 ranking by a criterion of :data:`CRITERIA`, and the same ranking across a range of snow moduli.
@@ -46,7 +46,7 @@ class FleetEntry:
     ski: FleetSki
     route: str
     route_note: str | None
-    metrics: Any  # skisnow.ski.SkiMetrics
+    metrics: Any  # skisnow.bench.SkiMetrics
     cases: dict[str, Any] = field(repr=False)
 
     def record(self) -> dict[str, Any]:

@@ -3,7 +3,7 @@
 A load history is what force-measuring bindings or pressure insoles record during skiing: at
 times t [s] the normal force F [N] the skier puts on ONE ski and the position x_m [m] of its
 centre of pressure along the ski (from the balance point, positive toward the tip, as
-:func:`skisnow.ski.camber_profile` takes it). Each sample is one load case of the paper's
+:func:`skisnow.network.camber_profile` takes it). Each sample is one load case of the paper's
 h = f(x, m, x_m) (Kalliorinne et al. 2023, §3.1: following "a whole cycle of the diagonal
 stride ... as a sequence of load cases" is what the camber network is for).
 

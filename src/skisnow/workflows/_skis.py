@@ -41,7 +41,7 @@ def resolve_ski(spec: str | Ski | FleetSki) -> FleetSki:
 
     A bench file (``.csv``/``.parquet`` camber-bench table of one ski) enters through the
     identification of its EI(x) and z0(x) from the whole bench sequence
-    (:func:`skisnow.ski.identify_ski`; about a minute on a 2-core machine).
+    (:func:`skisnow.identify.identify_ski`; about a minute on a 2-core machine).
 
     Raises
     ------
@@ -69,7 +69,7 @@ def resolve_ski(spec: str | Ski | FleetSki) -> FleetSki:
                 f"{path}: the bench holds {len(bench.skis)} skis ({', '.join(bench.skis)}); give "
                 "one bench file per ski of the fleet"
             )
-        # EI(x) and z0(x) identified from the whole bench sequence (skisnow.ski.identify_ski)
+        # EI(x) and z0(x) identified from the whole bench sequence (skisnow.identify.identify_ski)
         result = identify_ski(bench, source=str(path))
         return FleetSki(label=path.name, ski=result.ski, origin="bench file (identified)")
     ski = get_ski(str(path))
