@@ -2,15 +2,15 @@
 
 Run:  uv run python benchmarks/caption_tradeoffs.py REC.json [--weight 5] [--iterations 15]
 
-From a calibration record of ``benchmarks/calibrate_skis.py`` (default or ``--knots dense``,
-usually a ``--caption-only`` fit, a local optimum of the caption misfit), for every caption zone
-the recorded ski misses a bounded least squares (as the polish of the calibration: trust-region
-reflective, forward differences, the record's knots and box) on the caption residuals only, that
-zone's residuals weighted ``--weight``. What the forced ski gains on that zone and loses on the
-others is the trade-off of the pipeline (beam on the rigid plane → rigid profile → strip
-half-space, Kalliorinne et al. 2023): zones that leave the tolerance when another is forced in
-pull against it. Also printed: the middle of each zone's extent (first to last contact) [mm]:
-the moment balance (eq. 3) fixes the load shares by where the zones carry, with two zones
+From a calibration record of ``skisnow calibrate`` (``benchmarks/calibrate_skis.py``; default or
+``--knots dense``, usually a ``--caption-only`` fit, a local optimum of the caption misfit), for
+every caption zone the recorded ski misses a bounded least squares (as the polish of the
+calibration: trust-region reflective, forward differences, the record's knots and box) on the
+caption residuals only, that zone's residuals weighted ``--weight``. What the forced ski gains on
+that zone and loses on the others is the trade-off of the pipeline (beam on the rigid plane → rigid
+profile → strip half-space, Kalliorinne et al. 2023): zones that leave the tolerance when another is
+forced in pull against it. Also printed: the middle of each zone's extent (first to last contact)
+[mm]: the moment balance (eq. 3) fixes the load shares by where the zones carry, with two zones
 share_front = (x_m − x_rear) / (x_front − x_rear) at their load centres.
 """
 
@@ -19,14 +19,13 @@ from __future__ import annotations
 import argparse
 import json
 import math
-import sys
 from pathlib import Path
 
 import numpy as np
 from scipy.optimize import least_squares
 
-sys.path.insert(0, str(Path(__file__).resolve().parent))
-import calibrate_skis as cs
+from skisnow import calibrate as cs
+from skisnow.ski import SPLINE_KNOTS
 
 
 def table(kind: str, v: np.ndarray, solved: list | None = None) -> tuple[float, list[dict]]:
@@ -75,7 +74,7 @@ def main() -> None:
     args = ap.parse_args()
     doc = json.loads(args.record.read_text())
     kind = doc["ski"]
-    for knots in (cs.SPLINE_KNOTS, cs.DENSE_KNOTS):
+    for knots in (SPLINE_KNOTS, cs.DENSE_KNOTS):
         if list(knots[kind][1]) == doc["camber_knots_m"]:
             cs.KNOTS[kind] = knots[kind]
     v0 = cs.record_vector(kind, doc)

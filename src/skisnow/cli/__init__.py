@@ -4,11 +4,12 @@ Each concern has its own module that adds commands to the shared Typer :data:`ap
 them here registers the commands.
 
 May import: ski, bench, network, identify, contact, micro, pipeline, sweep, paper, workflows,
-explore, plot, report
+explore, plot, report, calibrate
 """
 
 from skisnow.cli import (  # noqa: F401  (registers)
     _bench_plan,
+    _calibrate,
     _contact,
     _demo,
     _explore,

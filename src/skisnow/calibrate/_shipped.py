@@ -1,0 +1,180 @@
+"""A calibration record written as a shipped ski file, with its provenance."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import numpy as np
+
+from skisnow.calibrate._residuals import (
+    EI_STEP_MAX,
+    FitOptions,
+    default_knot_indices,
+    hinge_limits,
+)
+from skisnow.ski import spline_ski
+
+__all__ = ["write_shipped"]
+
+
+def write_shipped(doc: dict, path: Path) -> Path:
+    """Write the fitted ski of a calibration record as a ski file with its provenance."""
+    import datetime
+
+    from skisnow import __version__
+    from skisnow.ski import SHIPPED_SOURCES, Provenance, write_ski
+
+    kind = doc["ski"]
+    pr = doc["plausibility"]
+    rows = doc["captions"]
+    n_ok = sum(r["ok"] for r in rows)
+    text = (
+        f"Virtual {kind} ski, a spline ski (log EI at {len(doc['ei_knots_m'])} knots, free "
+        f"camber at {len(doc['camber_knots_m'])} knots, PCHIP; "
+        f"skisnow.ski._spline), 44 mm wide, fitted to the captions of Kalliorinne et al. (2023), "
+        f"Figs. 4-7 under the practitioners' limits: {n_ok}/{len(rows)} zones within all "
+        f"tolerances (`skisnow captions`). Free camber at the balance point "
+        f"{pr['free_camber_mm']:.1f} mm; EI {pr['ei_min_n_m2']:.0f}-{pr['ei_max_n_m2']:.0f} N m². "
+        f"Virtual bench (65 kg skier, -80 mm): camber {pr['camber_half_mm']:.2f} mm at half and "
+        f"{pr['camber_full_mm']:.2f} mm at full body weight, Breitschädel stiffness k "
+        f"{pr['k_n_per_mm']:.0f} N/mm."
+    )
+    if doc["kick_zone_m"]:
+        a, b = doc["kick_zone_m"]
+        text += (
+            f" Kick zone {a * 1e3:.0f} .. {b * 1e3:.0f} mm (0.2 mm rear and 0.1 mm front marks "
+            "at half body weight)."
+        )
+    k_range = doc.get("k_range_n_per_mm")
+    limits = hinge_limits(
+        kind,
+        FitOptions(
+            k_range_n_per_mm=tuple(k_range or (225.0, 251.0)),
+            kick_gap_max_mm=doc.get("kick_gap_max_mm"),
+        ),
+    )
+
+    def _range(lo: float | None, hi: float | None) -> str:
+        return (
+            f"{lo:g}-{hi:g}"
+            if lo is not None and hi is not None
+            else (f">= {lo:g}" if lo is not None else f"<= {hi:g}")
+        )
+
+    missed = [
+        f"{key} {pr[key]:.4g} (limit {_range(lo, hi)})"
+        for (key, lo, hi, _), h in zip(limits, doc["hinge_residuals"], strict=True)
+        if h > 0
+    ]
+    if missed:
+        text += f" Practitioners' limits not met exactly: {'; '.join(missed)}."
+    if doc.get("ei_shape_weight"):
+        log_ei = np.log(np.array(doc["ei_n_m2"]))
+        peak = int(np.argmax(log_ei))
+        # the step limit acts between neighbouring knots of the default SPLINE_KNOTS
+        # (ei_shape_residuals), a subset of the record's knots
+        coarse = default_knot_indices(kind, doc["ei_knots_m"])
+        step = float(np.exp(np.max(np.abs(np.diff(log_ei[coarse])))))
+        text += (
+            f" EI(x) fitted under shape limits (one peak, neighbouring knots within "
+            f"{EI_STEP_MAX:g}x; chosen, not sourced): peak {doc['ei_n_m2'][peak]:.0f} N m² at "
+            f"{doc['ei_knots_m'][peak] * 1e3:+.0f} mm, largest step between neighbouring "
+            f"default knots {step:.1f}x."
+        )
+        wrong = [
+            float(np.exp(abs(d)))
+            for i, d in enumerate(np.diff(log_ei))
+            if (i < peak and d < 0) or (i >= peak and d > 0)
+        ]
+        if wrong:
+            text += (
+                f" The shape limit is not met exactly: {len(wrong)} wrong-way step(s), largest "
+                f"{(max(wrong) - 1) * 100:.1f} %."
+            )
+    if kind == "skate" and k_range:
+        lo, hi = k_range
+        text += (
+            f" Breitschädel stiffness k limited to {lo:.0f}-{hi:.0f} N/mm: Breitschädel et al. "
+            "(2010) measured the skating skis of the Norwegian national teams at team means "
+            "225-251 N/mm, the skis spreading ±53-87 N/mm (SD) about them"
+            + (
+                "; 95-420 N/mm is mean ± 2 SD over the three teams, the range of the skis "
+                "themselves."
+                if (lo, hi) == (95.0, 420.0)
+                else "."
+            )
+        )
+        if pr["k_n_per_mm"] > hi - 0.01 * (hi - lo):
+            text += (
+                f" BINDING: k sits at its upper limit ({pr['k_n_per_mm']:.0f} N/mm); the "
+                "captions alone pull it far higher (calibration_skate_caption_only_v2.json: "
+                "all six caption zones within tolerance at k about 6200 N/mm and 0.6 mm free "
+                "camber, not open at full weight; with k up to 550 or 700 N/mm 2 of 6 zones), "
+                "so this plausible ski misses most caption numbers."
+            )
+    if doc.get("findings"):
+        topo = doc["topology"]
+        text += (
+            " Also fitted (topology residuals, weight "
+            f"{float(doc.get('topology_weight', 0.0)):g}): the paper's qualitative findings "
+            "on 100 MPa at -120 mm (Fig. 5) and on the bench (Fig. 8): rear contact growing "
+            f"30->60 kg by >= {float(doc.get('rear_growth_min', 1.4)):g}x (got "
+            f"{topo['rear_growth_30_60']:.2f}x; paper 1.97x), front one patch at 30 kg and two "
+            f"at 60 kg, front mean pressure rising by >= "
+            f"{float(doc.get('front_pressure_growth_min', 1.5)):g}x (got "
+            f"{topo['front_pressure_growth_30_60']:.2f}x; paper 2.1x), the rear load share "
+            f"changing by <= 0.04 (got {topo['rear_share_change_30_60']:.3f}; paper 0.04), the "
+            "bench front one patch at 30 kg and two at 65 kg."
+        )
+    text += (
+        " FITTED numbers: the captions (lengths, mean pressures, load shares, patch counts);"
+        " the Figure 8-9 findings are predictions."
+        " CHOSEN by a fit, not measured: no public EI(x) or camber table of a XC ski."
+    )
+    provenance = Provenance(
+        method="calibrated: spline ski fitted to the captions of Kalliorinne et al. (2023), "
+        "Figs. 4-7 (benchmarks/calibrate_skis.py: differential evolution, then least squares)",
+        data="the caption numbers of Figs. 4-7 (skisnow.paper.CAPTIONS) through the paper's "
+        "pipeline (beam on the rigid plane, rigid profile, strip half-space, E_base 900 MPa, "
+        "nu 0.3); hinge limits on the practitioners' numbers",
+        sources=SHIPPED_SOURCES,
+        created=datetime.datetime.now(datetime.UTC).strftime("%Y-%m-%dT%H:%M:%SZ"),
+        software=f"skisnow {__version__}",
+        details=(
+            ("seed", int(doc["seed"])),
+            ("generations", int(doc.get("generations_run", doc["generations"]))),
+            ("hinge_weight", float(doc.get("hinge_weight", 2.0))),
+            ("topology_weight", float(doc.get("topology_weight", 0.0))),
+            ("ei_shape_weight", float(doc.get("ei_shape_weight", 0.0))),
+            (
+                "starts",
+                json.dumps(
+                    [
+                        "the ski shipped before, sampled at the knots" if s == "shipped" else s
+                        for s in doc.get("starts", ["START"])
+                    ]
+                ),
+            ),
+            ("popsize", int(doc["popsize"])),
+            ("evaluations", int(doc["evaluations"])),
+            ("caption_misfit", round(float(doc["caption_misfit"]), 3)),
+            ("caption_zones_within_tolerance", f"{n_ok}/{len(rows)}"),
+            ("k_n_per_mm", round(float(pr["k_n_per_mm"]), 1)),
+            *(
+                (("k_range_n_per_mm", json.dumps(k_range)),) if kind == "skate" else ()
+            ),  # the classic has no k limit
+            ("findings_residuals", bool(doc.get("findings", False))),
+            ("front_pressure_growth_min", float(doc.get("front_pressure_growth_min", 0.0))),
+            ("ei_knots_n_m2", json.dumps(doc["ei_n_m2"])),
+            ("camber_knots_mm", json.dumps(doc["camber_mm"])),
+            ("boot_plate", "chosen: a boot from the balance point 300 mm back"),
+        ),
+    )
+    kick = tuple(doc["kick_zone_m"]) if doc["kick_zone_m"] else None
+    ski = spline_ski(
+        kind, np.array(doc["ei_n_m2"]), np.array(doc["camber_mm"]) * 1e-3, kick_zone=kick,
+        description=text, provenance=provenance,
+        knots=(doc["ei_knots_m"], doc["camber_knots_m"]),
+    )  # fmt: skip
+    return write_ski(ski, path)
