@@ -218,3 +218,14 @@ def test_nothing_inside_skisnow_imports_skisnow_io() -> None:
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"
+
+
+@pytest.mark.parametrize(
+    "package",
+    ["ski", "bench", "network", "identify", "io", "pipeline", "report", "calibrate", "contact"],
+)
+def test_every_name_of_a_package_door_resolves(package: str) -> None:
+    module = importlib.import_module(f"skisnow.{package}")
+    assert len(set(module.__all__)) == len(module.__all__)
+    for name in module.__all__:
+        assert getattr(module, name) is not None, name

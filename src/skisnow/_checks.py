@@ -37,6 +37,7 @@ __all__ = [
     "allow_implausible",
     "available_memory",
     "check_array",
+    "check_finite_column",
     "check_grid_points",
     "check_memory",
     "check_option_values",
@@ -377,6 +378,28 @@ def positive_finite(name: str, value: float, unit: str = "") -> float:
     if not (math.isfinite(v) and v > 0):
         raise InputError(need)
     return v
+
+
+def check_finite_column(
+    values: np.ndarray,
+    *,
+    where: str,
+    column: str,
+    row_label: Callable[[int], str],
+    raw: np.ndarray | None = None,
+    error: type[InputError] = InputError,
+) -> None:
+    """Raise ``error`` naming the first row of a table column whose value is NaN, inf or empty
+    (the one rule for a column of numbers read from a file): ``where``, the row
+    (``row_label(i)``), the column, the value as read (``raw``, if given) and what is valid."""
+    bad = ~np.isfinite(values)
+    if bad.any():
+        i = int(np.flatnonzero(bad)[0])
+        value = "value" if raw is None else f"value {raw[i]!r}"
+        raise error(
+            f"{where}: {row_label(i)}, column {column!r}: {value} is NaN, inf or empty; every "
+            "value must be a finite number"
+        )
 
 
 def available_memory() -> int:

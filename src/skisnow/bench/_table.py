@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from skisnow._checks import check_finite_column
 from skisnow._errors import FileFormatError
 
 __all__ = ["BENCH_COLUMNS", "LOAD_ORDER_TOLERANCE_MM", "MIN_PROFILE_POINTS", "validate_bench_table"]
@@ -85,13 +86,10 @@ def validate_bench_table(
                 f"{where}: {_row_label(i, row_offset, csv)}, column {col!r}: "
                 f"{raw[i]!r} is not a number"
             )
-        nonfinite = ~np.isfinite(values)
-        if nonfinite.any():
-            i = int(np.flatnonzero(nonfinite)[0])
-            raise FileFormatError(
-                f"{where}: {_row_label(i, row_offset, csv)}, column {col!r}: value {raw[i]!r} "
-                "is NaN, inf or empty; every value must be a finite number"
-            )
+        check_finite_column(
+            values, where=where, column=col, raw=raw, error=FileFormatError,
+            row_label=lambda i: _row_label(i, row_offset, csv),
+        )  # fmt: skip
         out[col] = values
     _check_plausible(out, where, lambda i: _row_label(i, row_offset, csv))
     ski_blank = out["ski"].str.strip() == ""

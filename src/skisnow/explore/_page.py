@@ -80,6 +80,8 @@ def render_explorer(ds: Any, *, title: str = "skisnow explorer", subtitle: str =
     return page
 
 
+# The keyword options of explorer_dataset, repeated on purpose: it passes them on, and its
+# signature documents them where a reader looks (no **kwargs to unpack in the docs).
 def write_explorer(
     skis: Sequence[Any],
     path: str | Path,

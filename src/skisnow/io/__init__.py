@@ -15,6 +15,8 @@ from __future__ import annotations
 
 from skisnow._lazy import lazy_getattr
 
+# The names repeat those of their homes on purpose: a compatibility map names each old name and
+# its home, statically (read by tools/import_graph.py and tests/test_compat.py).
 _LAZY = {
     **dict.fromkeys(
         (
@@ -48,23 +50,4 @@ _LAZY = {
 
 __getattr__ = lazy_getattr(__name__, _LAZY)
 
-__all__ = [
-    "BENCH_COLUMNS",
-    "MIN_PROFILE_POINTS",
-    "MODEL_FORMAT",
-    "MODEL_FORMAT_VERSION",
-    "BenchData",
-    "load_network",
-    "metadata_checksum",
-    "model_paths",
-    "network_arrays",
-    "network_from_files",
-    "parse_model_bytes",
-    "read_bench",
-    "read_model_files",
-    "save_network",
-    "shipped_network",
-    "validate_bench_table",
-    "write_bench",
-    "write_model_files",
-]
+__all__ = sorted(_LAZY)

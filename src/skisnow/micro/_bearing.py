@@ -253,6 +253,8 @@ def bearing_area(
     return _result(topo, diameter, pressure, hardness, pos, out_w, out_z, out_l, nstar)
 
 
+# The same signature as bearing_area on purpose (repeated, not shared): the reference is called
+# with the same arguments to check it (tests/micro/test_bearing.py).
 def bearing_area_reference(
     topo: Topography,
     *,

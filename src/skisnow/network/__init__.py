@@ -36,7 +36,8 @@ from skisnow.network._files import (
 from skisnow.network._profiles import camber_profile
 
 # The network and its training need JAX: imported on first use, so that the contact sweep's
-# workers and the CLI start without it.
+# workers and the CLI start without it. (The names repeat their modules' __all__, as every
+# package door's imports do: one static list per door.)
 _LAZY = {
     **dict.fromkeys(
         ("Architecture", "BlockNetwork", "CamberNetwork", "Domain", "ReferenceProfile", "Scaling"),

@@ -378,6 +378,8 @@ class CamberNetwork:
             h = np.maximum(h, 0.0)
         return h[0] if scalar else h
 
+    # The same parameters as predict on purpose (repeated, not shared): the two are one API, and
+    # each signature documents its parameters where a reader looks.
     def predict_with_spread(
         self,
         x: Any,

@@ -23,6 +23,8 @@ from skisnow.paper._captions import (
 )
 from skisnow.paper._findings import Finding, ZoneMaps, figure89_findings, zone_maps
 
+# The names the modules export, listed again on purpose: __all__ is what ``import *`` and the
+# docs of the package door see (one literal list: static, what readers and tools read).
 __all__ = [
     "CAPTIONS",
     "TOLERANCES",

@@ -78,7 +78,9 @@ from skisnow.ski._skis import Provenance, Ski
 from skisnow.ski._spline import SPLINE_ENDS, SPLINE_KNOTS, spline_ski
 
 # Compatibility re-exports (see the docstring): imported on first use, which also keeps
-# ``import skisnow.ski`` light (the bench and its metrics need pandas, the network JAX).
+# ``import skisnow.ski`` light (the bench and its metrics need pandas, the network JAX). The
+# names repeat those of their homes on purpose: a compatibility map names each old name and its
+# home, statically (read by tools/import_graph.py and tests/test_compat.py).
 _LAZY = {
     **dict.fromkeys(
         (

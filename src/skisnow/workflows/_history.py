@@ -20,6 +20,7 @@ from pathlib import Path
 
 import numpy as np
 
+from skisnow._checks import check_finite_column
 from skisnow._errors import FileFormatError, InputError
 from skisnow.constants import STANDARD_GRAVITY
 
@@ -117,13 +118,7 @@ def _validate(
     """Raise an InputError naming the first bad row and column: NaN/inf, non-increasing time,
     a gap in time (a step > ``max_gap_factor`` × the median step), a negative force."""
     for values, col in zip((t, force, position), columns, strict=True):
-        bad = ~np.isfinite(values)
-        if bad.any():
-            i = int(np.flatnonzero(bad)[0])
-            raise InputError(
-                f"{where}: {label(i)}, column {col!r}: value is NaN, inf or empty; every value "
-                "must be a finite number"
-            )
+        check_finite_column(values, where=where, column=col, row_label=label)
     steps = np.diff(t)
     if np.any(steps <= 0):
         i = int(np.flatnonzero(steps <= 0)[0]) + 1

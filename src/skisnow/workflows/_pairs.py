@@ -228,6 +228,7 @@ def match_pairs(
     for done, fs in enumerate(resolved, start=1):
         try:
             curves.append(
+                # the call of pair_distance, repeated on purpose: the curves are defined once
                 _curves(
                     fs,
                     body_mass=body_mass,
