@@ -354,7 +354,8 @@ def identify_ski(
             f"{xmin * 1e3:.0f}..{xmax * 1e3:.0f} mm. Bands: 95 % (Gauss-Newton, noise only)."
         ),
         provenance=Provenance(
-            method="identified from camber-bench data (skisnow.identify.identify_ski: nonlinear "
+            # the text identified ski files have carried (kept when identify_ski moved)
+            method="identified from camber-bench data (skisnow.ski.identify_ski: nonlinear "
             "least squares of the beam on the bench stone, GCV regularisation)",
             data=(source or f"bench of ski {label!r}")
             + f"; {len(cases)} profiles, {n_samples} samples",
