@@ -83,45 +83,21 @@ from skisnow.ski._spline import SPLINE_ENDS, SPLINE_KNOTS, spline_ski
 # home, statically (read by tools/import_graph.py and tests/test_compat.py).
 _LAZY = {
     **dict.fromkeys(
-        (
-            "DEFAULT_LOAD_POSITIONS",
-            "DEFAULT_MASSES",
-            "SkiMetrics",
-            "SkiPassport",
-            "bench_grid",
-            "closing_load",
-            "closing_load_from_bench",
-            "run_bench",
-            "ski_metrics",
-            "ski_passport",
-        ),
-        "skisnow.bench",
+        ("DEFAULT_LOAD_POSITIONS", "DEFAULT_MASSES", "bench_grid", "run_bench"), "skisnow.bench"
     ),
     **dict.fromkeys(
-        (
-            "Architecture",
-            "BlockNetwork",
-            "CamberNetwork",
-            "Domain",
-            "ReferenceProfile",
-            "Scaling",
-            "TrainingProgress",
-            "camber_profile",
-            "load_network",
-            "save_network",
-            "shipped_network",
-            "train_network",
-        ),
+        ("SkiMetrics", "closing_load", "closing_load_from_bench", "ski_metrics"), "skisnow.bench"
+    ),
+    **dict.fromkeys(("SkiPassport", "ski_passport"), "skisnow.bench"),
+    **dict.fromkeys(
+        ("Architecture", "BlockNetwork", "CamberNetwork", "Domain", "ReferenceProfile", "Scaling"),
         "skisnow.network",
     ),
+    **dict.fromkeys(("load_network", "save_network", "shipped_network"), "skisnow.network"),
+    **dict.fromkeys(("TrainingProgress", "train_network", "camber_profile"), "skisnow.network"),
+    **dict.fromkeys(("IdentificationResult", "identify_ski"), "skisnow.identify"),
     **dict.fromkeys(
-        (
-            "BenchPlanPrediction",
-            "IdentificationResult",
-            "identify_ski",
-            "predict_identification_uncertainty",
-        ),
-        "skisnow.identify",
+        ("BenchPlanPrediction", "predict_identification_uncertainty"), "skisnow.identify"
     ),
 }
 
