@@ -157,11 +157,21 @@ def test_front_glide_patch_reaching_back_and_a_flat_ski() -> None:
     assert (z.rear.patches, z.middle.patches, z.front.patches) == (1, 0, 1)
     assert z.front.start == pytest.approx(0.10, abs=1e-3)
     assert z.kick.length == pytest.approx(0.15, abs=2e-3)
-    # one patch across both marks (a ski pressed flat) goes whole to one side, by its centre
-    for a, b, side in ((-0.7, 0.4, "rear"), (-0.4, 0.7, "front")):
+    assert not z.merged
+    # one patch across both marks (a ski pressed flat) is a merged footprint: the zones are the
+    # regions (rear glide | kick zone | front glide), never the whole footprint on one side
+    for a, b in ((-0.7, 0.4), (-0.4, 0.7)):
         z = contact_zones(constructed(X, field(X, (a, b, 30.0))), kick_zone=KICK)
-        assert z[side].patches == 1 and z[side].length == pytest.approx(b - a, abs=2e-3)
-        assert z.middle.patches == 0 and z.kick.length == pytest.approx(0.5, abs=2e-3)
+        assert z.merged and z.total.patches == 1
+        assert z.rear.length == pytest.approx(-0.25 - a, abs=2e-3)
+        assert z.middle.length == pytest.approx(0.5, abs=2e-3)
+        assert z.front.length == pytest.approx(b - 0.25, abs=2e-3)
+        assert z.kick.length == pytest.approx(0.5, abs=2e-3)
+        for zone, region in zip(("rear", "middle", "front"), z.footprint.regions, strict=True):
+            assert z[zone].force == region.force and z[zone].length == region.length
+        (patch,) = z.footprint.patches
+        assert patch.regions == ("rear_glide", "kick_zone", "front_glide")
+        assert patch.start == pytest.approx(a, abs=1e-3) and patch.end == pytest.approx(b, abs=1e-3)
     # without a kick zone the kick metric is empty
     z = contact_zones(constructed(X, field(X, (-0.6, -0.4, 30.0), (0.4, 0.6, 30.0))))
     assert z.kick.patches == 0 and z.kick.force == 0.0

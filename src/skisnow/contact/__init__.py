@@ -40,20 +40,33 @@ from skisnow.contact._materials import (
 )
 from skisnow.contact._operators import CellOperator, ComplianceOperator
 from skisnow.contact._polonsky_keer import PolonskyKeerResult, polonsky_keer
+from skisnow.contact._regions import (
+    CLASSIC_REGIONS,
+    SPLIT_REGIONS,
+    Footprint,
+    Patch,
+    Region,
+    footprint,
+    region_index,
+    region_marks,
+)
 from skisnow.contact._solver import ContactSolution, solve_contact
 from skisnow.contact._zones import (
     BREITSCHAEDEL_THRESHOLD,
     Zone,
     ZoneMetrics,
     contact_zones,
+    paper_zones,
     patches,
 )
 
 __all__ = [
     "BASE",
     "BREITSCHAEDEL_THRESHOLD",
+    "CLASSIC_REGIONS",
     "EQUIVALENT_MODULUS_RANGE",
     "SNOW_MODULUS_RANGE",
+    "SPLIT_REGIONS",
     "STONE",
     "CantileverCompliance",
     "CellOperator",
@@ -61,8 +74,11 @@ __all__ = [
     "ContactSolution",
     "Convolution",
     "FlexibleSolution",
+    "Footprint",
     "Material",
+    "Patch",
     "PolonskyKeerResult",
+    "Region",
     "Zone",
     "ZoneMetrics",
     "cantilever_compliance",
@@ -70,13 +86,17 @@ __all__ = [
     "contact_zones",
     "effective_modulus",
     "fields_table",
+    "footprint",
     "line_convolution",
     "line_kernel",
+    "paper_zones",
     "patches",
     "polonsky_keer",
     "read_fields",
     "read_profile",
     "reference",
+    "region_index",
+    "region_marks",
     "snow",
     "solve_contact",
     "solve_flexible",

@@ -3,19 +3,19 @@
 A *patch* is a connected run of stations along the ski where the ski touches the snow (for the
 surface model: where any cell across the width is in contact). Patches are grouped into zones:
 
-* with a kick (grip-wax) zone ``(start, end)`` (classic skis): patches are kept whole. A patch
-  that lies entirely between the kick-zone marks is ``middle`` — a separate contact under the
-  foot, the third zone of the paper's Figure 6 (right); every other patch belongs to the glide
-  zone it comes from: ``rear`` if it starts behind the rear mark and ends before the front
-  mark, ``front`` if it starts after the rear mark and ends beyond the front mark. A glide patch
-  that reaches into the kick zone therefore stays whole in its glide zone. A patch spanning both
-  marks (a ski pressed flat) goes whole to the side of the kick-zone centre on which its own
-  centre lies. Separately, the ``kick`` metric is the contact between the marks whatever patch
-  it belongs to: where the grip wax touches the snow and the load it carries;
-* without one (skate skis, or ``kick_zone=None``): ``rear``/``front`` are split at the top of the
-  camber pocket, the station of greatest height h between the centres of the rearmost and the
-  frontmost patch (the arch that separates the two glide zones); a single patch goes whole to
-  ``rear`` if its centre lies behind the load point, else to ``front``.
+* the paper's zones follow one rule, :func:`paper_zones`: with a kick (grip-wax) zone
+  ``(start, end)`` (classic skis) and separate patches, patches are kept whole — a patch lying
+  entirely between the marks is ``middle`` (the third zone of the paper's Figure 6, right), a
+  glide patch reaching into the kick zone stays whole in its glide zone; without a kick zone the
+  runs are cut at the top of the camber pocket between the outer patches. Once a patch runs
+  across the ski's region boundaries (*merged*: rear glide joined to front glide), the zones are
+  the regions (rear glide, kick zone, front glide; rear/front at the balance point without a
+  kick zone) and ``merged`` is True — whole-patch zones would jump there (the entire footprint
+  "rear", the front at 0 mm);
+* ``kick`` is the contact between the marks whatever patch it belongs to (where the grip wax
+  touches the snow);
+* ``footprint`` carries the two views that never jump (:mod:`skisnow.contact._regions`): the
+  regions fixed by the ski, and every patch with the regions it spans.
 
 Per zone, in total and between the kick-zone marks (``kick``): start, end [m] (outer cell
 edges), length [m] (sum of patch lengths — the paper's "two patches that amount to 132 mm"),
@@ -34,10 +34,19 @@ from dataclasses import asdict, dataclass
 import numpy as np
 
 from skisnow._errors import InputError
+from skisnow.contact._regions import Footprint, footprint, region_index, region_marks
+from skisnow.contact._regions import runs as _runs
 from skisnow.contact._solver import ContactSolution
 from skisnow.ski import BREITSCHAEDEL_THRESHOLD, breitschaedel_contact
 
-__all__ = ["BREITSCHAEDEL_THRESHOLD", "Zone", "ZoneMetrics", "contact_zones", "patches"]
+__all__ = [
+    "BREITSCHAEDEL_THRESHOLD",
+    "Zone",
+    "ZoneMetrics",
+    "contact_zones",
+    "paper_zones",
+    "patches",
+]
 
 ZONE_NAMES = ("rear", "middle", "front")
 
@@ -70,8 +79,12 @@ class Zone:
 class ZoneMetrics:
     """Zones of a contact solution: ``rear``, ``middle``, ``front``, ``total``, Breitschädel.
 
+    ``rear``/``middle``/``front`` are the paper's zones (:func:`paper_zones`); ``merged`` says
+    that the patches have joined across the ski's regions and the zones are the regions.
     ``kick`` is the contact between the kick-zone marks whatever patch it belongs to (where the
-    grip wax touches the snow; empty without a kick zone).
+    grip wax touches the snow; empty without a kick zone). ``footprint`` holds the two views
+    that never jump: the regions fixed by the ski and every patch
+    (:func:`skisnow.contact.footprint`).
     """
 
     rear: Zone
@@ -83,6 +96,8 @@ class ZoneMetrics:
     split: float
     kick_zone: tuple[float, float] | None
     threshold: float
+    footprint: Footprint
+    merged: bool
 
     def __getitem__(self, name: str) -> Zone:
         if name not in ("rear", "middle", "front", "total", "kick"):
@@ -96,34 +111,69 @@ class ZoneMetrics:
         out["split"] = self.split
         out["kick_zone"] = list(self.kick_zone) if self.kick_zone else None
         out["threshold"] = self.threshold
+        out["merged"] = self.merged
+        out.update(self.footprint.as_dict())
         return out
 
 
 def patches(mask: np.ndarray) -> list[tuple[int, int]]:
     """Connected runs of True in a 1D mask as ``(first, last)`` index pairs (inclusive)."""
-    m = np.asarray(mask, dtype=bool).astype(np.int8)
+    m = np.asarray(mask, dtype=bool)
     if m.ndim != 1:
         raise InputError(f"patches() needs a 1D mask, got shape {m.shape}")
-    d = np.diff(np.concatenate([[0], m, [0]]))
-    starts = np.flatnonzero(d == 1)
-    ends = np.flatnonzero(d == -1) - 1
-    return list(zip(starts.tolist(), ends.tolist(), strict=True))
+    return _runs(m)
 
 
-def _group(
+def paper_zones(
     runs: list[tuple[int, int]],
     x: np.ndarray,
     height: np.ndarray,
     load_position: float,
     kick_zone: tuple[float, float] | None,
     split: float | None,
-) -> tuple[dict[str, list[tuple[int, int]]], float]:
-    """Assign the runs (patches) to zones.
+) -> tuple[dict[str, list[tuple[int, int]]], float, bool]:
+    """The paper's rear / middle / front zones from the patches and the regions (one rule).
 
-    With a kick zone, patches stay whole (see the module docstring); without one, a run crossing
-    the rear/front split (the top of the camber pocket, or ``split``) is cut there.
+    Kalliorinne et al. (2023), Figures 4–7, compare zones made of whole patches. That holds
+    while the patches are separate; once one patch runs across the ski's region boundaries (a
+    *merged* footprint) a whole-patch zone would take the entire footprint and jump, so the
+    zones become the regions (:mod:`skisnow.contact._regions`):
+
+    * separate patches, with a kick zone: a patch lying between the marks is ``middle``; a patch
+      starting behind the rear mark and ending before the front mark is ``rear``, one starting
+      after the rear mark and ending beyond the front mark ``front`` (a glide patch reaching
+      into the kick zone stays whole in its glide zone, as in the paper's captions);
+    * separate patches, no kick zone: runs are cut at the top of the camber pocket between the
+      rearmost and the frontmost patch (or at ``split``); a single patch not crossing the
+      balance point goes whole to the side of the load point its centre lies on;
+    * merged (a patch from behind the rear mark to beyond the front mark; without a kick zone,
+      one patch across the balance point or ``split``): rear = the rear glide region, middle =
+      the kick-zone region, front = the front glide region, and ``merged`` is True.
+
+    Returns
+    -------
+    groups, split_used, merged
+        Station runs per zone name, the rear/front split used [m] (NaN with a kick zone), and
+        whether the footprint is merged.
     """
     groups: dict[str, list[tuple[int, int]]] = {n: [] for n in ZONE_NAMES}
+    marks, _, _ = region_marks(kick_zone, split=0.0 if split is None else split)
+    if kick_zone is not None:
+        k0, k1 = kick_zone
+        merged = any(x[i] < k0 and x[j] > k1 for i, j in runs)
+    else:
+        merged = len(runs) == 1 and x[runs[0][0]] < marks[0] <= x[runs[0][1]]
+    if merged:
+        idx = region_index(x, marks)
+        names = ("rear", "middle", "front") if kick_zone is not None else ("rear", "front")
+        for i, j in runs:
+            seg = idx[i : j + 1]
+            cuts = np.flatnonzero(np.diff(seg)) + 1
+            bounds = [0, *cuts.tolist(), seg.size]
+            for a, b in itertools.pairwise(bounds):
+                groups[names[int(seg[a])]].append((i + a, i + b - 1))
+        split_used = float("nan") if kick_zone is not None else float(marks[0])
+        return groups, split_used, True
     if kick_zone is not None:
         k0, k1 = kick_zone
         for i, j in runs:
@@ -132,12 +182,10 @@ def _group(
                 name = "middle"
             elif first < k0 and last <= k1:
                 name = "rear"
-            elif first >= k0 and last > k1:
+            else:  # first >= k0 and last > k1 (a run spanning both marks is merged)
                 name = "front"
-            else:  # spans both marks: the side of the kick-zone centre its centre lies on
-                name = "rear" if 0.5 * (first + last) < 0.5 * (k0 + k1) else "front"
             groups[name].append((i, j))
-        return groups, float("nan") if split is None else float(split)
+        return groups, float("nan") if split is None else float(split), False
     centres = [0.5 * (x[i] + x[j]) for i, j in runs]
     if split is None and len(runs) >= 2:
         lo, hi = min(centres), max(centres)
@@ -157,7 +205,7 @@ def _group(
         bounds = [0, *cuts.tolist(), seg.size]
         for a, b in itertools.pairwise(bounds):
             groups[ZONE_NAMES[int(seg[a])]].append((i + a, i + b - 1))
-    return groups, split_used
+    return groups, split_used, False
 
 
 def _between(
@@ -288,16 +336,23 @@ def contact_zones(
         h_along = solution.height
         footprint_width = np.full(x.size, w)
     total_force = float(line_force.sum())
-    runs = patches(along)
-    groups, split_used = _group(runs, x, h_along, solution.load_position, kick_zone, split)
+    found = patches(along)
+    groups, split_used, merged = paper_zones(
+        found, x, h_along, solution.load_position, kick_zone, split
+    )
     zones = {
         n: _zone(n, groups[n], x, dx, line_force, line_area, pmax, pen, total_force)
         for n in ZONE_NAMES
     }
-    total = _zone("total", runs, x, dx, line_force, line_area, pmax, pen, total_force)
+    total = _zone("total", found, x, dx, line_force, line_area, pmax, pen, total_force)
     kick = _zone(
-        "kick", _between(runs, x, kick_zone), x, dx, line_force, line_area, pmax, pen, total_force
+        "kick", _between(found, x, kick_zone), x, dx, line_force, line_area, pmax, pen, total_force
     )
+    fp = footprint(
+        x, along, kick_zone=kick_zone, split=0.0 if kick_zone is not None or split is None
+        else split, force=line_force, area=line_area, max_pressure=np.where(along, pmax, 0.0),
+        penetration=np.where(along, pen, 0.0), dx=dx,
+    )  # fmt: skip
 
     # Breitschädel (2012): contact wherever the gap to the plane the ski rests on is below the
     # threshold (one definition: skisnow.ski.breitschaedel_contact)
@@ -307,9 +362,10 @@ def contact_zones(
         x[rows], h_along[rows], kick_zone=kick_zone, threshold=threshold
     )
     b_runs = patches(b_mask)
-    b_groups, _ = _group(
-        b_runs, x, h_along, solution.load_position, kick_zone, split_used if runs else split
-    )
+    b_groups, _, _ = paper_zones(
+        b_runs, x, h_along, solution.load_position, kick_zone,
+        split_used if found and not merged else split,
+    )  # fmt: skip
     b_area = footprint_width * dx
     breit = {
         n: _zone(n, b_groups[n], x, dx, None, b_area, None, None, total_force) for n in ZONE_NAMES
@@ -325,4 +381,6 @@ def contact_zones(
         split=split_used,
         kick_zone=kick_zone,
         threshold=float(threshold),
+        footprint=fp,
+        merged=merged,
     )
