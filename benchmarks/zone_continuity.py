@@ -72,9 +72,10 @@ def main() -> None:
             if a is None or b is None:
                 continue
             dtot = abs(b["total"][0] - a["total"][0])
-            for key, (length, share) in b.items():
+            for key, value in b.items():
                 if key in ("total", "dx"):
                     continue
+                length, share = value
                 dl = abs(length - a[key][0])
                 ds = abs(share - a[key][1]) if np.isfinite(share) and np.isfinite(a[key][1]) else 0
                 w = worst.setdefault(f"{ski} {key}", [0.0, 0.0, 0.0, 0.0])

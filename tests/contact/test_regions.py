@@ -48,6 +48,24 @@ def test_footprint_bookkeeping_on_a_constructed_mask() -> None:
         region_marks((0.2, -0.2))
 
 
+def test_zone_metrics_regions_are_the_footprint_regions() -> None:
+    c = solve_case("classic", mass=75.0, load_position=-0.120, snow_modulus=50e6,
+                   profile_source="beam", n_points=512)  # fmt: skip
+    z = c.zones
+    for region in z.footprint.regions:
+        zone = z[region.name]
+        assert (zone.length, zone.force, zone.area) == (region.length, region.force, region.area)
+        assert zone.max_pressure == region.max_pressure
+    assert z["kick_zone"].force == z.kick.force  # the kick metric is the kick-zone region
+    doc = z.as_dict()
+    assert set(doc["regions"]) == {"rear_glide", "kick_zone", "front_glide"}
+    assert sum(p["force"] for p in doc["patches"]) == pytest.approx(75.0 * STANDARD_GRAVITY)
+    skate = solve_case("skate", mass=60.0, load_position=0.0, snow_modulus=50e6,
+                       profile_source="beam", n_points=512).zones  # fmt: skip
+    assert skate.footprint.names == ("rear_glide", "front_glide")
+    assert skate["kick_zone"].length == 0.0 and skate.footprint.rule == "balance point"
+
+
 CASES = [
     ("classic", -0.120, 20e6, "rigid"),
     ("classic", -0.070, 50e6, "rigid"),

@@ -119,7 +119,7 @@ def test_metrics_are_the_solvers(dataset) -> None:
 
 
 def _same_zones(point, zones) -> None:
-    for z in ("rear", "middle", "front", "total", "kick"):
+    for z in ("rear", "middle", "front", "total", "rear_glide", "kick_zone", "front_glide"):
         assert point["length_mm"].sel(zone=z).item() == pytest.approx(zones[z].length * 1e3)
         assert point["patches"].sel(zone=z).item() == zones[z].patches
         if zones[z].area > 0:
@@ -180,7 +180,8 @@ def test_page_in_a_real_browser(dataset, tmp_path: Path) -> None:
             pt = dataset.sel(ski="classic", model=model, mass_kg=mass, load_position_mm=pos,
                              snow_modulus_mpa=mod)  # fmt: skip
             return {z: f"{pt['length_mm'].sel(zone=z).item():.1f}"
-                    for z in ("rear", "middle", "front", "total", "kick")}  # fmt: skip
+                    for z in ("rear", "middle", "front", "total", "rear_glide", "kick_zone",
+                              "front_glide")}  # fmt: skip
 
         # the page opens nearest to 60 kg, −120 mm, 100 MPa
         assert shown() == expect(60.0, -120.0, 50.0)
@@ -223,3 +224,124 @@ def test_cli_writes_a_page_and_refuses_bad_options(tmp_path: Path, capsys) -> No
     assert main([*args, "--stations", "500"]) == 2  # must divide the 4096 solver stations
     assert main(["explore", "no-such-ski", "--out", str(tmp_path / "x.html")]) == 2
     assert not (tmp_path / "x.html").exists()
+
+
+#: An uneven grid (the demo's snow axis is uneven): the map must be drawn on the true values.
+UNEVEN = ExplorerGrid(
+    masses=(30.0, 45.0, 60.0, 100.0),
+    load_positions=(-0.12, -0.07),
+    snow_moduli=(20e6, 40e6, 100e6, 400e6),
+    n_points=1024,
+    n_display=128,
+)
+
+
+@pytest.fixture(scope="module")
+def uneven():
+    return explorer_dataset([_renamed_classic()], UNEVEN)
+
+
+def _renamed_classic() -> str:
+    """A ski file in a temporary folder (its folder must never show on the page)."""
+    import tempfile
+
+    from skisnow.ski import get_ski, write_ski
+
+    folder = Path(tempfile.mkdtemp(prefix="skisnow-private-folder-"))
+    path = folder / "my_classic.json"
+    write_ski(get_ski("classic"), path)
+    return str(path)
+
+
+def _wait_ready(driver) -> None:
+    for _ in range(100):
+        if driver.execute_script("return document.body.dataset.ready") == "1":
+            return
+        time.sleep(0.1)
+    pytest.fail("the page did not finish decoding its data")
+
+
+def test_page_names_no_local_folder_and_embeds_the_figures_palette(uneven) -> None:
+    import json
+
+    from skisnow.plot import ZONE_COLORS
+
+    page = render_explorer(uneven, title="t", subtitle="my_classic.json")
+    assert "skisnow-private-folder" not in page
+    meta = json.loads(page.split('id="skisnow-meta">')[1].split("</script>")[0])
+    assert meta["palette"] == ZONE_COLORS and meta["grid"]["ski"] == ["my_classic.json"]
+    assert meta["kick_zone_mm"][0] == pytest.approx([-254.2, 256.2])
+
+
+@pytest.mark.slow
+def test_page_on_an_uneven_grid_in_a_real_browser(uneven, tmp_path: Path) -> None:
+    """The marker lies on the cell of the selected value, the colour bar's numbers are the
+    data's range, the kick-zone marks are drawn, the link restores the settings, the export
+    carries the case shown."""
+    import json
+
+    from selenium.webdriver.common.keys import Keys
+
+    page = tmp_path / "explore.html"
+    page.write_text(render_explorer(uneven, title="skisnow explorer"), encoding="utf-8")
+    driver = _driver()
+    try:
+        driver.get(page.as_uri())
+        _wait_ready(driver)
+        driver.find_element("id", "mod").send_keys(Keys.END)  # 400 MPa
+        driver.find_element("id", "mod").send_keys(Keys.LEFT)  # 100 MPa
+        driver.find_element("id", "mass").send_keys(Keys.END)  # 100 kg
+        assert driver.find_element("id", "mod-value").text == "100 MPa"
+        canvas = driver.find_element("id", "map-area")
+        marker = json.loads(canvas.get_attribute("data-marker"))
+        # the cell of 100 MPa spans the midpoints to its neighbours 40 and 400 (70 … 250 MPa)
+        # and the cell of 100 kg from 80 kg to 120 kg (mirrored outer half-width), to a pixel
+        lo, hi = marker["modulus"]
+        assert (
+            lo < 100.0 < hi
+            and lo == pytest.approx(70.0, abs=4)
+            and hi == pytest.approx(250.0, abs=6)
+        )
+        m0, m1 = marker["mass"]
+        assert m0 == pytest.approx(80.0, abs=1) and m1 == pytest.approx(120.0, abs=1)
+        # the colour bar's numbers: the data's range (total area at this position and model)
+        area = uneven["area_cm2"].sel(zone="total", load_position_mm=-120.0).values
+        shown = [float(v) for v in canvas.get_attribute("data-colorbar").split()]
+        assert shown == pytest.approx([np.nanmin(area), np.nanmax(area)], rel=5e-3)
+        # the kick-zone marks are drawn on the ski
+        assert len(driver.find_element("id", "profile").get_attribute("data-kick-marks")
+                   .split(",")) == 2  # fmt: skip
+        # hover: value and grid point
+        from selenium.webdriver.common.action_chains import ActionChains
+
+        ActionChains(driver).move_to_element(canvas).perform()
+        assert "MPa" in driver.find_element("id", "map-area-readout").text
+        # export of the case shown
+        doc = json.loads(driver.execute_script("return window.skisnowExplorer.exportText('json')"))
+        assert (doc["mass_kg"], doc["snow_modulus_mpa"], doc["load_position_mm"]) == (
+            100.0, 100.0, -120.0)  # fmt: skip
+        assert doc["profile_route"] == "beam" and "kick_zone" in doc["zones"]
+        csv = driver.execute_script("return window.skisnowExplorer.exportText('csv')")
+        assert csv.splitlines()[1].startswith("zone,length_mm")
+        # the link keeps the settings: change them, reload with the link, find them again
+        driver.find_element("id", "pos").send_keys(Keys.END)  # -70 mm
+        driver.execute_script("arguments[0].click()", driver.find_element("id", "zoom"))
+        url = driver.current_url
+        assert "#" in url and "pos=-70" in url
+        driver.get("about:blank")
+        driver.get(url)
+        _wait_ready(driver)
+        assert driver.find_element("id", "mass-value").text == "100 kg"
+        assert driver.find_element("id", "mod-value").text == "100 MPa"
+        assert driver.find_element("id", "pos-value").text == "-70 mm"
+        assert not driver.find_element("id", "zoom").is_selected()
+        for width in (1400, 420):
+            driver.set_window_size(width, 1800)
+            time.sleep(0.3)
+            shot = Path(os.environ.get("SKISNOW_SCREENSHOT_DIR", tmp_path)) / f"uneven_{width}.png"
+            driver.save_screenshot(str(shot))
+            assert shot.stat().st_size > 10_000
+        errors = [e for e in driver.get_log("browser") if e["level"] in ("SEVERE", "WARNING")]
+        assert errors == []
+    finally:
+        driver.quit()

@@ -21,7 +21,7 @@ from skisnow.cli._render import (
 from skisnow.materials import BASE
 from skisnow.pipeline import DEFAULT_N_POINTS, MODELS, PROFILE_SOURCES, SKI_MODELS
 
-__all__ = ["zone_record"]
+__all__ = ["footprint_records", "patch_record", "zone_record"]
 
 _ZONES = ("rear", "middle", "front", "total")
 
@@ -43,6 +43,37 @@ def zone_record(zone: Any, *, pressures: bool = True) -> dict[str, Any]:
             "penetration_um": zone.penetration * 1e6,
         }
     return rec
+
+
+def patch_record(patch: Any) -> dict[str, Any]:
+    """One contact patch (:class:`skisnow.contact.Patch`) in field units."""
+    return {
+        "start_mm": patch.start * 1e3,
+        "end_mm": patch.end * 1e3,
+        "length_mm": patch.length * 1e3,
+        "area_cm2": patch.area * 1e4,
+        "load_n": patch.force,
+        "load_share": patch.load_share,
+        "mean_pressure_kpa": patch.mean_pressure * 1e-3,
+        "max_pressure_kpa": patch.max_pressure * 1e-3,
+        "penetration_um": patch.penetration * 1e6,
+        "regions": list(patch.regions),
+    }
+
+
+def footprint_records(zones: Any) -> dict[str, Any]:
+    """The two views that never jump, in field units: ``regions`` (fixed by the ski) and
+    ``patches``, with ``merged`` (the paper's zones are the regions) and the region marks."""
+    fp = zones.footprint
+    return {
+        "merged": zones.merged,
+        "region_rule": fp.rule,
+        "region_marks_mm": [m * 1e3 for m in fp.marks],
+        "regions": {
+            name: zone_record(zones[name]) | {"load_n": zones[name].force} for name in fp.names
+        },
+        "patches": [patch_record(p) for p in fp.patches],
+    }
 
 
 @app.command()
@@ -202,6 +233,7 @@ def contact(
         "ski": ski,
         "profile": None if profile is None else str(profile),
         "profile_source": profile_source if ski is not None and ski_model == "rigid" else None,
+        "profile_route": case.route,
         "ski_model": ski_model,
         "model": model,
         "mass_kg": mass_kg,
@@ -215,6 +247,7 @@ def contact(
         doc[name] = zone_record(zones[name])
     # the grip-wax metric: contact between the kick-zone marks, whatever patch it belongs to
     doc["kick"] = zone_record(zones.kick)
+    doc |= footprint_records(zones)
     doc["breitschaedel"] = {
         name: zone_record(zones.breitschaedel[name], pressures=False) for name in _ZONES
     }
@@ -233,6 +266,7 @@ def contact(
     if json_out:
         emit_json(doc)
         return
+    region_names = [n.replace("_", " ") for n in doc["regions"]]
     rows = [
         [
             name,
@@ -246,9 +280,11 @@ def contact(
         ]
         for name in _ZONES
     ]
+    merged_note = " — merged footprint: zones = regions" if zones.merged else ""
     print_table(
-        f"Apparent contact: {ski or profile}, {mass_kg:g} kg at {load_position_mm:g} mm, "
-        f"snow {snow_modulus_mpa:g} MPa ({model}, {ski_model} ski)",
+        f"Apparent contact: {ski or profile}, {mass_kg:g} kg at {load_position_mm:g} mm from "
+        f"the balance point, snow {snow_modulus_mpa:g} MPa ({model}, {case.route} route)"
+        f"{merged_note}",
         [
             "zone",
             "length [mm]",
@@ -261,6 +297,22 @@ def contact(
         ],
         rows,
     )
+    print_table(
+        f"By region (fixed by the ski: {doc['region_rule']} at "
+        f"{', '.join(f'{m:+.0f}' for m in doc['region_marks_mm'])} mm)",
+        ["region", "contact [mm]", "area [cm²]", "load [N]", "load share", "mean p [kPa]",
+         "max p [kPa]"],
+        [[label, r["length_mm"], r["area_cm2"], r["load_n"], r["load_share"],
+          r["mean_pressure_kpa"], r["max_pressure_kpa"]]
+         for label, r in zip(region_names, doc["regions"].values(), strict=True)],
+    )  # fmt: skip
+    print_table(
+        "By patch (every contiguous contact patch)",
+        ["patch", "from [mm]", "to [mm]", "length [mm]", "load share", "max p [kPa]", "regions"],
+        [[str(k), p["start_mm"], p["end_mm"], p["length_mm"], p["load_share"],
+          p["max_pressure_kpa"], " + ".join(r.replace("_", " ") for r in p["regions"])]
+         for k, p in enumerate(doc["patches"], start=1)],
+    )  # fmt: skip
     status = "converged" if sol.converged else "NOT converged"
     console.print(
         f"δ = {doc['translation_um']:.2f} µm, θ = {sol.rotation:.3e} rad, {status} in "

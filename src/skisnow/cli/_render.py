@@ -22,8 +22,9 @@ ProfileSourceOption = Annotated[
     str,
     typer.Option(
         "--profile-source",
-        help="Loaded profile: network (shipped pretrained), beam (virtual ski), or auto "
-        "(network for a shipped ski, beam for a ski file).",
+        help="Loaded profile route: beam (the ski's EI(x), z0(x) on the rigid plane: the "
+        "truth), network (the shipped camber network, an emulator of the beam; for a ski whose "
+        "content is a shipped one's) or auto (= beam, for every ski).",
     ),
 ]
 #: The grids of the sweep, its report's maps and the explorer: ``start:stop:step``, a value or a
@@ -125,6 +126,44 @@ def format_number(value: float, *, digits: int = 4) -> str:
     return f"{v:.{digits - 1}e}"
 
 
+def _cell(v: Any, floatfmt: str | None) -> str:
+    if v is None or (isinstance(v, float) and not math.isfinite(v)):
+        return "—"
+    if isinstance(v, (float, np.floating)):
+        return format(float(v), floatfmt) if floatfmt else format_number(float(v))
+    return str(v)
+
+
+def _span(text: str, wraps: bool) -> int:
+    return max((len(w) for w in text.split()), default=0) if wraps else len(text)
+
+
+def fit_columns(
+    columns: Sequence[str],
+    cells: Sequence[Sequence[str]],
+    width: int,
+    *,
+    wraps: Sequence[bool] | None = None,
+) -> tuple[list[int], list[str], list[int]]:
+    """The columns of a table that fit ``width`` characters without cutting a number.
+
+    A column needs its longest number (numbers are never cut), its texts' and header's longest
+    word (texts and headers wrap at spaces), plus 3 characters of border and padding. Columns
+    are dropped from the right (the first, the row's name, always stays) until the table fits.
+    ``wraps[k]`` says whether column k holds text. Returns the kept column indices, the dropped
+    column names and every column's tight width.
+    """
+    wraps = [False] * len(columns) if wraps is None else list(wraps)
+    tight = [
+        max(max((_span(r[k], wraps[k]) for r in cells), default=0), _span(col, True))
+        for k, col in enumerate(columns)
+    ]
+    keep = list(range(len(columns)))
+    while len(keep) > 1 and sum(tight[k] + 3 for k in keep) + 1 > width:
+        keep.pop()
+    return keep, [columns[k] for k in range(len(columns)) if k not in keep], tight
+
+
 def print_table(
     title: str,
     columns: Sequence[str],
@@ -134,24 +173,37 @@ def print_table(
 ) -> None:
     """Print a Rich table: floats via :func:`format_number` or ``floatfmt``, None as a dash.
 
-    Texts are printed literally: units in brackets (``length [mm]``) are not Rich markup.
+    Texts are printed literally: units in brackets (``length [mm]``) are not Rich markup. The
+    table fits the terminal (80 columns when piped): headers wrap, numbers are never cut, and
+    columns that do not fit are dropped with a note naming them (``--json`` and the CSV files
+    keep everything).
     """
     from rich.markup import escape
 
+    cells = [[_cell(v, floatfmt) for v in row] for row in rows]
+    wraps = [k == 0 or any(isinstance(row[k], str) for row in rows) for k in range(len(columns))]
+    keep, dropped, tight = fit_columns(columns, cells, console.width, wraps=wraps)
     table = Table(title=escape(title))
-    for col in columns:
-        table.add_column(escape(col), justify="right" if col != columns[0] else "left")
-    for row in rows:
-        cells = []
-        for v in row:
-            if v is None or (isinstance(v, float) and not math.isfinite(v)):
-                cells.append("—")
-            elif isinstance(v, (float, np.floating)):
-                cells.append(format(float(v), floatfmt) if floatfmt else format_number(float(v)))
-            else:
-                cells.append(escape(str(v)))
-        table.add_row(*cells)
+    natural = sum(max(max((len(r[k]) for r in cells), default=0), len(columns[k])) + 3
+                  for k in keep) + 1  # fmt: skip
+    spare = console.width - (sum(tight[k] + 3 for k in keep) + 1)
+    for k in keep:
+        # too wide on one line each: numbers at their width, texts share what is left
+        w = tight[k]
+        if natural > console.width and wraps[k] and k == keep[-1]:
+            w += max(spare, 0)
+        table.add_column(escape(columns[k]), justify="left" if wraps[k] else "right",
+                         width=w if natural > console.width else None,
+                         overflow="fold")  # fmt: skip
+    for row in cells:
+        table.add_row(*(escape(row[k]) for k in keep))
     console.print(table)
+    if dropped:
+        console.print(
+            f"({len(dropped)} column(s) left out to fit {console.width} characters: "
+            f"{', '.join(dropped)}; --json or the CSV output has them)",
+            markup=False, highlight=False,
+        )  # fmt: skip
 
 
 def _without_ctrl_c(step: Callable[[], None]) -> None:

@@ -14,13 +14,13 @@ from skisnow.cli._render import JsonOption, emit_json, print_table, progress_bar
 
 
 def resolve_profile_source(option: str, skis: list[str]) -> str:
-    """``--profile-source auto``: the shipped network when every ski is a shipped one (it exists
-    only for them), the beam when a ski file is among them; other values pass through."""
-    from skisnow.ski import SHIPPED_SKIS
+    """``--profile-source auto``: the default route for every ski, whatever its name or file
+    (:data:`skisnow.pipeline.DEFAULT_PROFILE_SOURCE`, the beam: the truth of a ski defined by
+    EI(x) and z0(x)); other values pass through."""
+    from skisnow.pipeline import DEFAULT_PROFILE_SOURCE
 
-    if option != "auto":
-        return option
-    return "network" if all(s in SHIPPED_SKIS for s in skis) else "beam"
+    del skis  # the route depends on no ski's name (issue 26)
+    return DEFAULT_PROFILE_SOURCE if option == "auto" else option
 
 
 def ski_summary_rows(skis: list[str] | None = None) -> list[dict[str, Any]]:

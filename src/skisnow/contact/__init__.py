@@ -53,6 +53,7 @@ from skisnow.contact._regions import (
 from skisnow.contact._solver import ContactSolution, solve_contact
 from skisnow.contact._zones import (
     BREITSCHAEDEL_THRESHOLD,
+    REGION_NAMES,
     Zone,
     ZoneMetrics,
     contact_zones,
@@ -65,6 +66,7 @@ __all__ = [
     "BREITSCHAEDEL_THRESHOLD",
     "CLASSIC_REGIONS",
     "EQUIVALENT_MODULUS_RANGE",
+    "REGION_NAMES",
     "SNOW_MODULUS_RANGE",
     "SPLIT_REGIONS",
     "STONE",

@@ -41,6 +41,7 @@ from skisnow.ski import BREITSCHAEDEL_THRESHOLD, breitschaedel_contact
 
 __all__ = [
     "BREITSCHAEDEL_THRESHOLD",
+    "REGION_NAMES",
     "Zone",
     "ZoneMetrics",
     "contact_zones",
@@ -49,6 +50,8 @@ __all__ = [
 ]
 
 ZONE_NAMES = ("rear", "middle", "front")
+#: Every region name a ski can have (:mod:`skisnow.contact._regions`), tail → tip.
+REGION_NAMES = ("rear_glide", "kick_zone", "front_glide")
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -98,11 +101,17 @@ class ZoneMetrics:
     threshold: float
     footprint: Footprint
     merged: bool
+    regions: dict[str, Zone]
 
     def __getitem__(self, name: str) -> Zone:
-        if name not in ("rear", "middle", "front", "total", "kick"):
-            raise KeyError(name)
-        return getattr(self, name)
+        """A zone by name, or a region (``rear_glide``, ``kick_zone``, ``front_glide``) as a
+        :class:`Zone` (an empty one for ``kick_zone`` on a ski without a kick zone)."""
+        if name in ("rear", "middle", "front", "total", "kick"):
+            return getattr(self, name)
+        if name in REGION_NAMES:
+            return self.regions.get(name) or _empty_zone(name, pressures=True)
+        raise KeyError(f"{name!r}: zones are rear, middle, front, total, kick, "
+                       f"{', '.join(REGION_NAMES)}")  # fmt: skip
 
     def as_dict(self) -> dict:
         """Nested plain dict in SI units."""
@@ -112,7 +121,7 @@ class ZoneMetrics:
         out["kick_zone"] = list(self.kick_zone) if self.kick_zone else None
         out["threshold"] = self.threshold
         out["merged"] = self.merged
-        out.update(self.footprint.as_dict())
+        out.update(self.footprint.as_dict())  # "regions", "patches", "marks", "rule"
         return out
 
 
@@ -221,6 +230,23 @@ def _between(
     return patches(mask & inside)
 
 
+def _empty_zone(name: str, *, pressures: bool) -> Zone:
+    return Zone(
+        name=name,
+        start=float("nan"),
+        end=float("nan"),
+        length=0.0,
+        area=0.0,
+        force=0.0,
+        load_share=0.0,
+        mean_pressure=float("nan"),
+        max_pressure=0.0 if pressures else float("nan"),
+        patches=0,
+        penetration=0.0 if pressures else float("nan"),
+        intervals=(),
+    )
+
+
 def _zone(
     name: str,
     runs: list[tuple[int, int]],
@@ -233,20 +259,7 @@ def _zone(
     total_force: float,
 ) -> Zone:
     if not runs:
-        return Zone(
-            name=name,
-            start=float("nan"),
-            end=float("nan"),
-            length=0.0,
-            area=0.0,
-            force=0.0,
-            load_share=0.0,
-            mean_pressure=float("nan"),
-            max_pressure=0.0 if line_force is not None else float("nan"),
-            patches=0,
-            penetration=0.0 if pen_along is not None else float("nan"),
-            intervals=(),
-        )
+        return _empty_zone(name, pressures=line_force is not None)
     sel = np.zeros(x.size, dtype=bool)
     for i, j in runs:
         sel[i : j + 1] = True
@@ -353,6 +366,14 @@ def contact_zones(
         else split, force=line_force, area=line_area, max_pressure=np.where(along, pmax, 0.0),
         penetration=np.where(along, pen, 0.0), dx=dx,
     )  # fmt: skip
+    # the regions as zones (the same numbers as fp.regions, with their contact intervals)
+    ridx = region_index(x, fp.marks)
+    regions = {}
+    for k, region in enumerate(fp.regions):
+        cut = patches(along & (ridx == k))
+        regions[region.name] = _zone(
+            region.name, cut, x, dx, line_force, line_area, pmax, pen, total_force
+        )
 
     # Breitschädel (2012): contact wherever the gap to the plane the ski rests on is below the
     # threshold (one definition: skisnow.ski.breitschaedel_contact)
@@ -383,4 +404,5 @@ def contact_zones(
         threshold=float(threshold),
         footprint=fp,
         merged=merged,
+        regions=regions,
     )

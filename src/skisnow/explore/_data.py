@@ -20,9 +20,10 @@ import numpy as np
 
 from skisnow._errors import InputError
 
-#: Zones of :class:`skisnow.contact.ZoneMetrics` on the page; ``kick`` is the contact between the
-#: kick-zone marks, whatever patch it belongs to (where the grip wax touches the snow).
-ZONES = ("rear", "middle", "front", "total", "kick")
+#: Zones of :class:`skisnow.contact.ZoneMetrics` on the page: the paper's zones and the total,
+#: then the regions fixed by the ski (``kick_zone`` is the contact between the kick-zone marks,
+#: whatever patch it belongs to: where the grip wax touches the snow).
+ZONES = ("rear", "middle", "front", "total", "rear_glide", "kick_zone", "front_glide")
 #: What the page needs of a sweep, in the page's order of dims.
 POINT = ("ski", "model", "mass_kg", "load_position_mm", "snow_modulus_mpa")
 FIELDS = ("pressure_kpa", "base_um", "snow_um", "zone_code")
@@ -62,7 +63,7 @@ def explorer_dataset(
     skis: Sequence[str],
     grid: ExplorerGrid | None = None,
     *,
-    profile_source: str = "network",
+    profile_source: str = "beam",
     ski_models: Sequence[str] = ("rigid",),
     store: str | Path | None = None,
     workers: int | None = 0,
@@ -126,5 +127,12 @@ def explorer_dataset(
     ds = xr.concat(parts, dim=xr.DataArray(list(models), dims="model", name="model"))
     ds["x_mm"] = ds["x_mm"].isel(model=0, drop=True)
     ds = ds.transpose(*POINT, "zone", "station", missing_dims="ignore")
+    # the kick-zone marks of each ski [mm] (NaN without a kick zone), drawn on the page
+    marks = np.full((len(specs[0].skis), 2), np.nan)
+    for k, label in enumerate(specs[0].skis):
+        kz = specs[0].ski(label).kick_zone
+        if kz is not None:
+            marks[k] = (kz[0] * 1e3, kz[1] * 1e3)
+    ds["kick_zone_mm"] = xr.DataArray(marks, dims=("ski", "mark"))
     ds.attrs = {"profile_source": profile_source, "ski_models": list(models)}
     return ds

@@ -34,6 +34,21 @@ def _nearest(values: list[float], target: float) -> int:
     return int(np.argmin(np.abs(np.asarray(values, dtype=float) - target)))
 
 
+def display_name(label: str) -> str:
+    """A ski's name on a page: a shipped name as is, a ski file by its file name only (a page
+    never shows the local folders of whoever made it)."""
+    return Path(str(label)).name
+
+
+def _style() -> dict[str, Any]:
+    """The one palette of the figures (:mod:`skisnow.plot`), embedded in the page's data so the
+    page and the figures cannot drift apart."""
+    from skisnow.plot import MAP_CMAP, ZONE_COLORS, ZONE_LABELS, cmap_stops
+
+    return {"palette": dict(ZONE_COLORS), "labels": dict(ZONE_LABELS),
+            "cmap": cmap_stops(MAP_CMAP, 11), "cmap_name": MAP_CMAP}  # fmt: skip
+
+
 def render_explorer(ds: Any, *, title: str = "skisnow explorer", subtitle: str = "") -> str:
     """The explorer page of dataset ``ds`` (from :func:`skisnow.explore.explorer_dataset`).
 
@@ -44,17 +59,24 @@ def render_explorer(ds: Any, *, title: str = "skisnow explorer", subtitle: str =
     arrays = {k: np.asarray(ds[k].values) for k in ARRAYS}
     manifest, blob = pack(curves, arrays)
     grid = {
-        "ski": [str(s) for s in ds["ski"].values],
+        "ski": [display_name(s) for s in ds["ski"].values],
         "model": [str(s) for s in ds["model"].values],
         "mass_kg": [float(v) for v in ds["mass_kg"].values],
         "load_position_mm": [float(v) for v in ds["load_position_mm"].values],
         "snow_modulus_mpa": [float(v) for v in ds["snow_modulus_mpa"].values],
     }
+    source = str(ds.attrs.get("profile_source", "beam"))
+    kick = ds["kick_zone_mm"].values if "kick_zone_mm" in ds else np.full((len(grid["ski"]), 2),
+                                                                          np.nan)  # fmt: skip
     meta = {
         "grid": grid,
         "arrays": manifest,
         "n_stations": int(ds.sizes["station"]),
         "skisnow_version": ds.attrs.get("skisnow_version", ""),
+        "zones": [str(z) for z in ds["zone"].values],
+        "kick_zone_mm": [None if np.isnan(k).any() else [float(k[0]), float(k[1])] for k in kick],
+        "route": {m: ("flexible" if m == "flexible" else source) for m in grid["model"]},
+        **_style(),
     }
     note = (
         "Lengths, areas and pressures of the half-space contact (Kalliorinne et al. 2023, "
@@ -87,7 +109,7 @@ def write_explorer(
     path: str | Path,
     grid: Any = None,
     *,
-    profile_source: str = "network",
+    profile_source: str = "beam",
     ski_models: Sequence[str] = ("rigid",),
     store: str | Path | None = None,
     workers: int | None = 0,
@@ -104,7 +126,7 @@ def write_explorer(
                           store=store, workers=workers, scheduler=scheduler,
                           progress=progress)  # fmt: skip
     ds.attrs["skisnow_version"] = __version__
-    names = ", ".join(str(s) for s in ds["ski"].values)
+    names = ", ".join(display_name(s) for s in ds["ski"].values)
     page = render_explorer(
         ds, title="skisnow explorer", subtitle=f"{names} · skisnow {__version__}"
     )

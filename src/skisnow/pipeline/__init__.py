@@ -25,9 +25,11 @@ from skisnow._lazy import lazy_getattr
 from skisnow.pipeline._case import DEFAULT_TOL, MODELS, SKI_MODELS, Case, solve_case
 from skisnow.pipeline._profiles import (
     DEFAULT_N_POINTS,
+    DEFAULT_PROFILE_SOURCE,
     PROFILE_SOURCES,
     loaded_profiles,
     resolve_ski,
+    shipped_twin,
     stations,
 )
 
@@ -40,6 +42,7 @@ __getattr__ = lazy_getattr(__name__, _LAZY)
 
 __all__ = [
     "DEFAULT_N_POINTS",
+    "DEFAULT_PROFILE_SOURCE",
     "DEFAULT_TOL",
     "MAP_MASSES",
     "MAP_MODULI",
@@ -51,6 +54,7 @@ __all__ = [
     "SkiStudy",
     "loaded_profiles",
     "resolve_ski",
+    "shipped_twin",
     "solve_case",
     "standard_cases",
     "stations",

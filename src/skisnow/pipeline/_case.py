@@ -22,6 +22,7 @@ from skisnow._errors import DomainWarning, InputError, UnsupportedLoadError
 from skisnow.constants import STANDARD_GRAVITY
 from skisnow.pipeline._profiles import (
     DEFAULT_N_POINTS,
+    DEFAULT_PROFILE_SOURCE,
     _check_source,
     loaded_profiles,
     resolve_ski,
@@ -108,6 +109,13 @@ class Case:
     flexible: FlexibleSolution | None = field(default=None, repr=False)
 
     @property
+    def route(self) -> str:
+        """The profile route of this case, as every output states it: ``'network'`` or
+        ``'beam'`` (the rigid ski's loaded profile), ``'flexible'`` (beam and snow solved
+        together) or ``'given'`` (a profile the caller gave)."""
+        return "flexible" if self.ski_model == "flexible" else self.profile_source
+
+    @property
     def breitschaedel(self) -> dict[str, Zone]:
         """The Breitschädel (2012) 50 µm contact estimate per zone (lengths and areas)."""
         return self.zones.breitschaedel
@@ -153,7 +161,7 @@ def solve_case(
     load_position: float,
     snow_modulus: float,
     model: str = "strip",
-    profile_source: str = "network",
+    profile_source: str = DEFAULT_PROFILE_SOURCE,
     n_points: int = DEFAULT_N_POINTS,
     base: Material | float | None = None,
     poisson: float = 0.3,
@@ -190,7 +198,9 @@ def solve_case(
     model
         ``'strip'`` (1-D, fast) or ``'surface'`` (2-D grid of ``n_across`` cells across).
     profile_source
-        ``'network'`` (the shipped camber network) or ``'beam'`` (the virtual ski's beam).
+        ``'beam'`` (default: the virtual ski's beam, the truth of a ski defined by EI(x) and
+        z0(x); :data:`skisnow.pipeline.DEFAULT_PROFILE_SOURCE`) or ``'network'`` (the shipped
+        camber network, an emulator of the beam, for a ski whose content is a shipped one's).
     n_points
         Stations along the ski.
     base

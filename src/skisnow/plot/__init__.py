@@ -21,14 +21,26 @@ from skisnow.plot._maps import MAP_KINDS, plot_load_share, plot_zone_map, sweep_
 from skisnow.plot._micro import bearing_figure, topography_figure
 from skisnow.plot._profiles import plot_camber_profiles
 from skisnow.plot._ski import plot_passport
-from skisnow.plot._style import FORMATS, figure_svg, save_figure
+from skisnow.plot._style import (
+    FORMATS,
+    MAP_CMAP,
+    ZONE_COLORS,
+    ZONE_LABELS,
+    cmap_stops,
+    figure_svg,
+    save_figure,
+)
 from skisnow.plot._workflows import animate_cycle, plot_cycle, plot_fleet, plot_snow_ranking
 
 __all__ = [
     "FORMATS",
+    "MAP_CMAP",
     "MAP_KINDS",
+    "ZONE_COLORS",
+    "ZONE_LABELS",
     "animate_cycle",
     "bearing_figure",
+    "cmap_stops",
     "figure_svg",
     "plot_camber_profiles",
     "plot_contact",

@@ -32,13 +32,42 @@ COLORS: dict[str, str] = {
 }
 #: Colour map of the snow modulus (one line per modulus).
 MODULUS_CMAP = "viridis"
-#: Zone colours for load-share plots.
+#: The one zone palette of skisnow: every figure and the explorer page (which receives it from
+#: here, embedded in its data) colour a zone and its region alike — rear / rear glide blue,
+#: middle / kick zone purple, front / front glide orange.
 ZONE_COLORS: dict[str, str] = {
     "rear": "#1f5fbf",
     "middle": "#8e44ad",
     "front": "#e67e22",
-    "total": "black",
+    "total": "#000000",
+    "rear_glide": "#1f5fbf",
+    "kick_zone": "#8e44ad",
+    "front_glide": "#e67e22",
+    "kick": "#8e44ad",
 }
+#: The zones' and regions' names in the field's words (figures, tables, explorer).
+ZONE_LABELS: dict[str, str] = {
+    "rear": "rear zone",
+    "middle": "middle zone (own patch in the kick zone)",
+    "front": "front zone",
+    "total": "total",
+    "rear_glide": "rear glide (region)",
+    "kick_zone": "kick zone (region)",
+    "front_glide": "front glide (region)",
+    "kick": "between the kick-zone marks",
+}
+#: Colour map of every map over (load, snow) in figures and the explorer.
+MAP_CMAP = "viridis"
+
+
+def cmap_stops(name: str = MAP_CMAP, n: int = 11) -> list[str]:
+    """``n`` evenly spaced colours of the colour map ``name`` as hex strings (for the page)."""
+    from matplotlib.colors import to_hex
+
+    cmap = matplotlib.colormaps[name]
+    return [to_hex(cmap(k / (n - 1))) for k in range(n)]
+
+
 #: Output formats written by :func:`save_figure` by default.
 FORMATS: tuple[str, ...] = ("png", "svg")
 

@@ -67,7 +67,7 @@ def standard_cases(
     body_mass: float,
     load_position: float,
     snows: Sequence[float] = STANDARD_SNOWS,
-    profile_source: str = "network",
+    profile_source: str = "beam",
     n_points: int = DEFAULT_N_POINTS,
     ski_model: str = "rigid",
 ) -> tuple[Case, ...]:
@@ -98,7 +98,7 @@ def study_ski(
     store: str | Path | None = None,
     masses: Sequence[float] = MAP_MASSES,
     map_moduli: Sequence[float] = MAP_MODULI,
-    profile_source: str = "network",
+    profile_source: str = "beam",
     n_points: int = DEFAULT_N_POINTS,
     workers: int | None = 0,
     scheduler: str | None = None,

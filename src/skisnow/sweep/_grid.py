@@ -51,7 +51,9 @@ class SweepSpec:
         load_positions: load positions x_m [m] from the balance point, positive toward the tip.
         snow_moduli: elastic moduli of the snow E_counter [Pa].
         model: contact model of the solver, ``'strip'`` or ``'surface'``.
-        profile_source: ``'network'`` (the shipped pretrained network) or ``'beam'``.
+        profile_source: ``'beam'`` (default: the virtual ski, the truth of a ski defined by
+            EI(x) and z0(x); :data:`skisnow.pipeline.DEFAULT_PROFILE_SOURCE`) or
+            ``'network'`` (the shipped camber network, an emulator of the beam).
         n_points: grid points along the ski for the profile and the contact solve.
         base_modulus: E_base of the ski base [Pa]; with ``poisson`` it gives E' (eq. 2).
         poisson: Poisson ratio ν of both bodies (eq. 2).
@@ -72,7 +74,7 @@ class SweepSpec:
     load_positions: tuple[float, ...]
     snow_moduli: tuple[float, ...]
     model: str = "strip"
-    profile_source: str = "network"
+    profile_source: str = "beam"
     n_points: int = 4096
     base_modulus: float = PAPER_BASE_MODULUS
     poisson: float = PAPER_POISSON
@@ -98,9 +100,15 @@ class SweepSpec:
         if unused:
             raise InputError(f"ski_files: {unused[0]!r} is not one of the skis {skis!r}")
         object.__setattr__(self, "ski_files", tuple((k, files[k]) for k in skis if k in files))
-        if self.profile_source == "network" and self.ski_files:
+        from skisnow.pipeline import shipped_twin
+
+        foreign = [
+            k for k, _ in self.ski_files
+            if self.profile_source == "network" and shipped_twin(self.ski(k)) is None
+        ]  # fmt: skip
+        if foreign:
             raise InputError(
-                f"ski {self.ski_files[0][0]!r} is a ski file: the camber network exists only for "
+                f"ski {foreign[0]!r} is a ski file: the camber network exists only for "
                 f"the shipped skis ({', '.join(SHIPPED_SKIS)}); use profile_source 'beam'"
             )
         object.__setattr__(

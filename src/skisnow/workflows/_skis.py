@@ -51,7 +51,9 @@ def resolve_ski(spec: str | Ski | FleetSki) -> FleetSki:
     if isinstance(spec, FleetSki):
         return spec
     if isinstance(spec, Ski):
-        return FleetSki(label=spec.name, ski=spec, origin="ski object")
+        from skisnow.pipeline import shipped_twin
+
+        return FleetSki(label=spec.name, ski=spec, origin="ski object", network=shipped_twin(spec))
     if spec in SHIPPED_SKIS:
         return FleetSki(label=spec, ski=get_ski(spec), origin="shipped", network=spec)
     path = Path(spec)
@@ -73,9 +75,10 @@ def resolve_ski(spec: str | Ski | FleetSki) -> FleetSki:
         result = identify_ski(bench, source=str(path))
         return FleetSki(label=path.name, ski=result.ski, origin="bench file (identified)")
     ski = get_ski(str(path))
-    # a file holding a shipped ski unchanged may use that ski's camber network
-    shipped = ski.name if ski.name in SHIPPED_SKIS and get_ski(ski.name) == ski else None
-    return FleetSki(label=path.name, ski=ski, origin="ski file", network=shipped)
+    # a file holding a shipped ski's content (whatever its name) may use that ski's network
+    from skisnow.pipeline import shipped_twin
+
+    return FleetSki(label=path.name, ski=ski, origin="ski file", network=shipped_twin(ski))
 
 
 def resolve_fleet(

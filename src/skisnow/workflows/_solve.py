@@ -42,9 +42,11 @@ def choose_route(
 ) -> tuple[ProfileRoute, str | None]:
     """The profile route for these load cases and, if it had to change, why.
 
-    The network route (the paper's method) is used where a shipped network exists and every
-    load case lies in its trained domain; otherwise the beam (the virtual ski itself) — never a
-    silent extrapolation of the network.
+    ``auto`` is the default route of every ski, the beam (the truth of a ski defined by EI(x)
+    and z0(x), :data:`skisnow.pipeline.DEFAULT_PROFILE_SOURCE`); ``network`` asks for the
+    shipped camber network (the paper's method, an emulator of the beam) where one exists for
+    the ski's content and every load case lies in its trained domain — never a silent
+    extrapolation of the network.
 
     Returns
     -------
@@ -53,7 +55,7 @@ def choose_route(
     """
     if requested not in ("auto", "network", "beam"):
         raise InputError(f"profile source must be auto, network or beam, got {requested!r}")
-    if requested == "beam":
+    if requested in ("beam", "auto"):
         return "beam", None
     if fs.network is None:
         if requested == "network":
