@@ -127,4 +127,4 @@ def test_network_outside_its_domain_is_a_warning_on_the_case() -> None:
     case = solve_case("skate", **{**KW, "profile_source": "network", "mass": 200.0})
     assert any("outside its trained domain" in w for w in case.warnings)
     with pytest.warns(DomainWarning):  # the lower-level batched call warns as before
-        loaded_profiles("skate", [200.0], -0.12, n_points=N)
+        loaded_profiles("skate", [200.0], -0.12, n_points=N, profile_source="network")

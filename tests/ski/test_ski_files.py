@@ -185,6 +185,13 @@ def test_sweep_spec_carries_the_ski_definition(tmp_path: Path) -> None:
     path.unlink()  # the workers need only the spec
     again = SweepSpec.from_json(spec.to_json())
     assert again == spec and again.ski(str(path)) == get_ski("classic")
+    # the network route is found by content: a copy of a shipped ski may use its network, a
+    # changed ski may not (issue 26: a ski's name never changes its answer)
+    SweepSpec(skis=(str(path),), masses=(30.0,), load_positions=(-0.12,), snow_moduli=(1e8,),
+              ski_files=spec.ski_files, profile_source="network")  # fmt: skip
+    from dataclasses import replace
+
+    other = write_ski(replace(get_ski("classic"), width=0.045), tmp_path / "wide.json")
     with pytest.raises(InputError, match="camber network exists only for the shipped skis"):
-        SweepSpec(skis=(str(path),), masses=(30.0,), load_positions=(-0.12,),
-                  snow_moduli=(1e8,), ski_files=spec.ski_files)  # fmt: skip
+        SweepSpec(skis=(str(other),), masses=(30.0,), load_positions=(-0.12,),
+                  snow_moduli=(1e8,), profile_source="network")  # fmt: skip

@@ -81,11 +81,12 @@ def test_outside_the_trained_domain_the_beam_is_used_and_said() -> None:
     kick = LoadHistory(
         time=t, force=np.array([80, 100, 140, 100, 80]) * 9.81, load_position=np.full(5, -0.08)
     )
-    a = run_cycle("classic", inside, snow_modulus=100e6, n_points=N, keep_fields=False)
+    a = run_cycle("classic", inside, snow_modulus=100e6, n_points=N, keep_fields=False,
+                  profile_source="network")  # fmt: skip
     assert a.attrs["route"] == "network" and a.attrs["route_note"] == ""
-    b = run_cycle("classic", kick, snow_modulus=100e6, n_points=N, keep_fields=False)
-    assert b.attrs["route"] == "beam"
-    assert "130" in b.attrs["route_note"] and "beam" in b.attrs["route_note"]
+    # the default route is the beam for every ski (issue 26), with nothing to say
+    d = run_cycle("classic", kick, snow_modulus=100e6, n_points=N, keep_fields=False)
+    assert d.attrs["route"] == "beam" and d.attrs["route_note"] == ""
     with pytest.raises(InputError, match="extrapolate"):
         run_cycle("classic", kick, snow_modulus=100e6, n_points=N, profile_source="network")
 

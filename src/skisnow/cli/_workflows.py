@@ -73,6 +73,10 @@ _SIDE_BY_SIDE = (
     ("closing_load_kg", "closing load [kg]"),
     ("stiffness_n_per_mm", "stiffness [N/mm]"),
 )
+#: Rows of derived metrics computed at the load position (named in their label).
+_AT_POSITION = ("closing_load_kg",)
+#: Zones and regions of the side-by-side table (``kick`` is the kick-zone region).
+ZONE_ROWS = ("rear", "middle", "front", "total", "rear_glide", "kick", "front_glide")
 _CONTACT_ROWS = (
     ("length_mm", "length [mm]"),
     ("area_cm2", "area [cm²]"),
@@ -82,15 +86,21 @@ _CONTACT_ROWS = (
 )
 
 
-def comparison_rows(records: Sequence[dict[str, Any]]) -> list[list[Any]]:
-    """The side-by-side table: one row per quantity, one column per ski (field units)."""
-    rows: list[list[Any]] = [["route", *[r["profile_route"] for r in records]]]
-    rows += [[label, *[r[key] for r in records]] for key, label in _SIDE_BY_SIDE]
+def comparison_rows(
+    records: Sequence[dict[str, Any]], *, load_position_mm: float | None = None
+) -> list[list[Any]]:
+    """The side-by-side table: one row per quantity, one column per ski (field units); the
+    load position of the derived metrics is named in their rows."""
+    at = "" if load_position_mm is None else f" at {load_position_mm:g} mm"
+    rows: list[list[Any]] = [["profile route", *[r["profile_route"] for r in records]]]
+    rows += [[label.replace(" [", f"{at} [", 1) if key in _AT_POSITION else label,
+              *[r[key] for r in records]] for key, label in _SIDE_BY_SIDE]  # fmt: skip
     for load, tag in (("half", "½ BW"), ("full", "1 BW")):
-        for zone in ("rear", "middle", "front", "total", "kick"):
+        for zone in ZONE_ROWS:
             for key, label in _CONTACT_ROWS:
+                name = zone.replace("_", " ") if zone != "kick" else "kick zone"
                 rows.append(
-                    [f"{tag} {zone} {label}", *[r[f"{load}_{zone}_{key}"] for r in records]]
+                    [f"{tag} {name} {label}", *[r[f"{load}_{zone}_{key}"] for r in records]]
                 )
         rows.append([f"{tag} grip wax touches", *[r[f"{load}_kick_contact"] for r in records]])
     return rows
@@ -163,6 +173,7 @@ def compare(
             **{f"{s}_{crit.column}": float(snow.values[i, j]) for i, s in enumerate(snow.skis)},
             **{f"{s}_rank": int(snow.ranks[i, j]) for i, s in enumerate(snow.skis)},
             "best": snow.winners()[j],
+            "order": snow.order_text(j),
         }
         for j, e in enumerate(snow.snow_moduli)
     ]
@@ -212,24 +223,23 @@ def compare(
             f"Fleet: {body_mass_kg:g} kg at {load_position_mm:g} mm on {snow_modulus_mpa:g} MPa "
             f"snow ({ski_model})",
             ["quantity", *labels],
-            comparison_rows(records),
+            comparison_rows(records, load_position_mm=load_position_mm),
         )
         print_table(
             f"Ranking by {crit.name} ({crit.column}, {crit.better} is better)",
             ["rank", "ski", crit.column],
-            [[r["rank"], r["ski"], r[crit.column]] for r in ranking],
+            [
+                [f"{r['rank']}=" if r["tied"] else str(r["rank"]), r["ski"], r[crit.column]]
+                for r in ranking
+            ],
         )
         console.print(f"criterion: {crit.description}")
+        if any(r["tied"] for r in ranking):
+            console.print("n= : a tie (equal values; skis with the same content always tie)")
         print_table(
             f"Best ski by {crit.name} across snow",
             ["snow [MPa]", "order (best first)"],
-            [
-                [
-                    rec["snow_modulus_mpa"],
-                    " > ".join(sorted(snow.skis, key=lambda s, r=rec: r[f"{s}_rank"])),
-                ]
-                for rec in snow_records
-            ],
+            [[rec["snow_modulus_mpa"], rec["order"]] for rec in snow_records],
         )
         if not changes:
             console.print("the order does not change over the snow range")
@@ -262,6 +272,7 @@ def pairs(
     from skisnow.workflows import (
         CAMBER_TOLERANCE,
         CONTACT_TOLERANCE,
+        POOR_MATCH_DISTANCE,
         STIFFNESS_TOLERANCE,
         match_pairs,
     )
@@ -290,6 +301,7 @@ def pairs(
             "camber_rms_um": d.camber_rms * 1e6,
             "stiffness_rms_percent": d.stiffness_rms * 100,
             "load_moved_percent": d.load_moved * 100,
+            "poor_match": result.poor((a, b, d)),
             "worst": worst is not None and (a, b) == worst[:2],
         }
         for a, b, d in result.pairs
@@ -298,7 +310,9 @@ def pairs(
         f"d = sqrt((rms dz0 / {CAMBER_TOLERANCE * 1e3:g} mm)^2 + (rms dlnEI / "
         f"{STIFFNESS_TOLERANCE:g})^2 + (load moved / {CONTACT_TOLERANCE:g})^2); load moved = "
         f"half the integral of |q_a - q_b| over the load, at {body_mass_kg:g} kg on "
-        f"{snow_modulus_mpa:g} MPa snow"
+        f"{snow_modulus_mpa:g} MPa snow, load at {load_position_mm:g} mm from the balance point; "
+        f"a poor match: d > {POOR_MATCH_DISTANCE:g} (the skis differ by more than the "
+        "tolerances); the worst: the poor match of largest d"
     )
     matrix = [
         {"ski": s, **{t: float(result.distances[i, j]) for j, t in enumerate(result.skis)}}
@@ -333,7 +347,7 @@ def pairs(
                     r["camber_term"],
                     r["stiffness_term"],
                     r["contact_term"],
-                    "WORST" if r["worst"] else "",
+                    "WORST" if r["worst"] else ("poor" if r["poor_match"] else ""),
                 ]
                 for r in records
             ],

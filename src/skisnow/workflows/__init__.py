@@ -36,6 +36,7 @@ from skisnow.workflows._history import (
 from skisnow.workflows._pairs import (
     CAMBER_TOLERANCE,
     CONTACT_TOLERANCE,
+    POOR_MATCH_DISTANCE,
     STIFFNESS_TOLERANCE,
     PairDistance,
     Pairing,
@@ -44,6 +45,7 @@ from skisnow.workflows._pairs import (
 )
 from skisnow.workflows._skis import FleetSki, resolve_fleet, resolve_ski
 from skisnow.workflows._templates import TEMPLATES, CycleTemplate, template_history
+from skisnow.workflows._ties import competition_ranks, tied_with
 
 __all__ = [
     "CAMBER_TOLERANCE",
@@ -51,6 +53,7 @@ __all__ = [
     "CRITERIA",
     "DEFAULT_LOAD_POSITION",
     "MAX_GAP_FACTOR",
+    "POOR_MATCH_DISTANCE",
     "STIFFNESS_TOLERANCE",
     "TEMPLATES",
     "UNLOADED_MASS",
@@ -66,6 +69,7 @@ __all__ = [
     "SnowRanking",
     "check_positions",
     "compare_fleet",
+    "competition_ranks",
     "kick_contact_summary",
     "match_pairs",
     "pair_distance",
@@ -75,4 +79,5 @@ __all__ = [
     "resolve_ski",
     "run_cycle",
     "template_history",
+    "tied_with",
 ]

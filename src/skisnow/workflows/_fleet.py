@@ -10,6 +10,7 @@ ranking by a criterion of :data:`CRITERIA`, and the same ranking across a range 
 
 from __future__ import annotations
 
+import itertools
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from typing import Any, Literal
@@ -33,7 +34,8 @@ __all__ = [
 #: The reference load position [m]: 120 mm behind the balance point, as in the paper's figures.
 DEFAULT_LOAD_POSITION = -0.120
 _LOADS = {"half": 0.5, "full": 1.0}
-_ZONES = ("rear", "middle", "front", "total", "kick")
+#: The paper's zones, the total, and the regions (``kick`` is the kick-zone region).
+_ZONES = ("rear", "middle", "front", "total", "rear_glide", "kick", "front_glide")
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -56,6 +58,7 @@ class FleetEntry:
             "ski": self.ski.label,
             "origin": self.ski.origin,
             "profile_route": self.route,
+            "load_position_mm": self.cases["full"].load_position * 1e3,
             "camber_half_mm": m.camber_half * 1e3,
             "camber_full_mm": m.camber_full * 1e3,
             "pocket_0.1mm_half_mm": m.pocket_length_01_half * 1e3,
@@ -166,14 +169,23 @@ class FleetComparison:
         return [e.record() for e in self.entries]
 
     def ranking(self, criterion: str) -> list[dict[str, Any]]:
-        """The skis from best to worst by ``criterion`` (a key of :data:`CRITERIA`)."""
+        """The skis from best to worst by ``criterion`` (a key of :data:`CRITERIA`).
+
+        Tied skis (equal values: identical skis) share a rank (``1, 1, 3``), say so in
+        ``tied`` and name each other in ``tied_with`` (:mod:`skisnow.workflows._ties`).
+        """
+        from skisnow.workflows._ties import competition_ranks, tied_with
+
         crit = _criterion(criterion)
         recs = self.records()
         values = [float(r[crit.column]) for r in recs]
+        ranks = competition_ranks(values, better=crit.better)
+        ties = tied_with(values, better=crit.better)
         return [
-            {"rank": k + 1, "ski": recs[i]["ski"], crit.column: values[i]}
-            for k, i in enumerate(crit.order(values))
-        ]
+            {"rank": int(ranks[i]), "tied": bool(ties[i]), "ski": recs[i]["ski"],
+             crit.column: values[i], "tied_with": [recs[j]["ski"] for j in ties[i]]}
+            for i in crit.order(values)
+        ]  # fmt: skip
 
 
 def _criterion(name: str) -> Criterion:
@@ -311,7 +323,7 @@ class SnowRanking:
     values
         Criterion value, shape ``(n_skis, n_moduli)``, in the criterion column's field unit.
     ranks
-        1 = best, same shape.
+        1 = best, same shape; tied skis share a rank (standard competition ranking).
     changes
         ``(E_before, E_after, order_before, order_after)`` where the order of the skis changes
         between two neighbouring moduli.
@@ -325,8 +337,19 @@ class SnowRanking:
     changes: tuple[tuple[float, float, tuple[str, ...], tuple[str, ...]], ...]
 
     def winners(self) -> list[str]:
-        """The best ski at each modulus."""
-        return [self.skis[int(np.argmin(self.ranks[:, j]))] for j in range(self.ranks.shape[1])]
+        """The best ski at each modulus (tied best skis joined by `` = ``)."""
+        return [
+            " = ".join(s for s, r in zip(self.skis, self.ranks[:, j], strict=True) if r == 1)
+            for j in range(self.ranks.shape[1])
+        ]
+
+    def order_text(self, j: int) -> str:
+        """The order at modulus ``j``, best first: ``a > b = c`` (``=`` a tie)."""
+        order = sorted(range(len(self.skis)), key=lambda i: (self.ranks[i, j], i))
+        text = self.skis[order[0]]
+        for prev, i in itertools.pairwise(order):
+            text += (" = " if self.ranks[i, j] == self.ranks[prev, j] else " > ") + self.skis[i]
+        return text
 
 
 def rank_across_snow(
@@ -388,12 +411,18 @@ def rank_across_snow(
             if progress is not None:
                 progress(done, total)
     labels = tuple(e.ski.label for e in entries)
+    from skisnow.workflows._ties import competition_ranks
+
     ranks = np.empty_like(values, dtype=np.int64)
     orders = []
     for j in range(moduli.size):
         order = crit.order(values[:, j])
-        ranks[order, j] = np.arange(1, len(entries) + 1)
-        orders.append(tuple(labels[k] for k in order))
+        ranks[:, j] = competition_ranks(values[:, j], better=crit.better)
+        # the order with its ties: skis sharing a rank form one group (sorted by name)
+        groups: dict[int, list[str]] = {}
+        for k in order:
+            groups.setdefault(int(ranks[k, j]), []).append(labels[k])
+        orders.append(tuple(" = ".join(sorted(g)) for _, g in sorted(groups.items())))
     changes = tuple(
         (float(moduli[j]), float(moduli[j + 1]), orders[j], orders[j + 1])
         for j in range(moduli.size - 1)

@@ -13,6 +13,10 @@ each a difference divided by a stated practitioner tolerance:
   the day's snow; 0 identical, 1 disjoint), divided by :data:`CONTACT_TOLERANCE` (0.1).
 
 d_ij = sqrt(d_camber² + d_stiffness² + d_contact²) (one unit = "as different as the tolerance").
+A pair is a *poor match* when its distance exceeds :data:`POOR_MATCH_DISTANCE` (1: together, the
+two skis differ by more than one tolerance); the *worst* pair is the poor match of largest
+distance — never a pair tied with the best one, and none at all when every pair is within the
+tolerances.
 The pairing is a minimum-weight perfect matching of the complete graph with these weights
 (networkx ``min_weight_matching``, the blossom algorithm — not a hand-written search); with an
 odd number of skis one is left as the spare (the matching that leaves it out is the best over
@@ -36,6 +40,7 @@ from skisnow.workflows._solve import choose_route, loaded_profiles, solve_loaded
 __all__ = [
     "CAMBER_TOLERANCE",
     "CONTACT_TOLERANCE",
+    "POOR_MATCH_DISTANCE",
     "STIFFNESS_TOLERANCE",
     "PairDistance",
     "Pairing",
@@ -46,6 +51,9 @@ __all__ = [
 CAMBER_TOLERANCE = 0.1e-3
 STIFFNESS_TOLERANCE = 0.05
 CONTACT_TOLERANCE = 0.1
+#: Distance above which a pair is flagged as a poor match (one unit: as different as the
+#: tolerances, in root sum of squares).
+POOR_MATCH_DISTANCE = 1.0
 _DX = 1e-3  # the common grid [m] on which curves and line loads are compared
 
 
@@ -187,8 +195,19 @@ class Pairing:
 
     @property
     def worst(self) -> tuple[str, str, PairDistance] | None:
-        """The worst-matched pair (largest distance)."""
-        return self.pairs[-1] if self.pairs else None
+        """The worst-matched pair: the poor match (distance above :data:`POOR_MATCH_DISTANCE`)
+        of largest distance, strictly larger than the smallest pair distance; ``None`` when no
+        pair is a poor match or all pairs tie."""
+        if not self.pairs:
+            return None
+        last, first = self.pairs[-1], self.pairs[0]
+        if last[2].total > POOR_MATCH_DISTANCE and last[2].total > first[2].total:
+            return last
+        return None
+
+    def poor(self, pair: tuple[str, str, PairDistance]) -> bool:
+        """Whether ``pair`` is a poor match (distance above :data:`POOR_MATCH_DISTANCE`)."""
+        return pair[2].total > POOR_MATCH_DISTANCE
 
     @property
     def total(self) -> float:
