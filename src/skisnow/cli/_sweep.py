@@ -177,7 +177,10 @@ def report(
         "skisnow-report"
     ),
     body_mass_kg: Annotated[
-        float, typer.Option("--body-mass-kg", help="Skier's body mass (kg).")
+        float,
+        typer.Option(
+            "--body-mass-kg", help="Skier's body mass in kg (default 60; stated in the report)."
+        ),
     ] = 60.0,
     load_position_mm: Annotated[
         float, typer.Option("--load-position-mm", help="Load position x_m (mm).")
@@ -227,20 +230,27 @@ def report(
 
     source = resolve_profile_source(profile_source, [ski])
     stem = Path(ski).stem if ski.lower().endswith(".json") else ski  # a ski file: its stem
-    study = study_ski(
-        ski,
-        store=out
-        / (f"{stem}_maps_{source}.zarr" if ski_model == "rigid" else f"{stem}_maps_flexible.zarr"),
-        body_mass=body_mass_kg,
-        load_position=load_position_mm * 1e-3,
-        workers=workers,
-        scheduler=scheduler,
-        profile_source=source,
-        masses=tuple(parse_values(mass_kg, name="--mass-kg")),
-        map_moduli=tuple(parse_values(snow_modulus_mpa, name="--snow-modulus-mpa") * 1e6),
-        n_points=n_points,
-        ski_model=ski_model,
-    )
+    if not json_out:
+        err_console.print(
+            f"report of {ski}: skier body mass {body_mass_kg:g} kg (--body-mass-kg), load at "
+            f"{load_position_mm:g} mm from the balance point, {source} route"
+        )
+    with progress_bar("report", disable=json_out) as bar:
+        study = study_ski(
+            ski,
+            store=out / (f"{stem}_maps_{source}.zarr" if ski_model == "rigid"
+                         else f"{stem}_maps_flexible.zarr"),
+            body_mass=body_mass_kg,
+            load_position=load_position_mm * 1e-3,
+            workers=workers,
+            scheduler=scheduler,
+            profile_source=source,
+            masses=tuple(parse_values(mass_kg, name="--mass-kg")),
+            map_moduli=tuple(parse_values(snow_modulus_mpa, name="--snow-modulus-mpa") * 1e6),
+            n_points=n_points,
+            ski_model=ski_model,
+            progress=bar,
+        )  # fmt: skip
     from skisnow.workflows import TEMPLATES, compare_fleet, run_cycle, template_history
 
     cycles = []

@@ -22,7 +22,13 @@ th, td { border: 1px solid #ccd3da; padding: .25em .6em; text-align: right; }
 th { background: #eef2f6; }
 td:first-child, th:first-child { text-align: left; }
 figure { margin: 1em 0; }
-figure svg { max-width: 100%; height: auto; }
+figure svg { width: 100%; max-width: 100%; height: auto; display: block; }
+.scroll { overflow-x: auto; max-width: 100%; -webkit-overflow-scrolling: touch; }
+.scroll table { margin: 0; }
+@media (max-width: 600px) {
+  header { padding: .8em 1em; } main { padding: .5em .8em 2em .8em; }
+  figure { margin: 1em -.5em; }
+}
 figcaption { font-size: .88em; color: #4a5560; margin-top: .3em; }
 .note { font-size: .88em; color: #4a5560; }
 footer { font-size: .8em; color: #6a747e; margin-top: 3em; }
@@ -84,7 +90,9 @@ def _table(t: Table) -> str:
         for row in t.rows
     )
     cap = f"<caption>{html.escape(t.caption)}</caption>" if t.caption else ""
-    return f"<table>{cap}<thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
+    # the table scrolls inside its box on a narrow screen; the page itself never does
+    return (f'<div class="scroll"><table>{cap}<thead><tr>{head}</tr></thead><tbody>{body}'
+            "</tbody></table></div>")  # fmt: skip
 
 
 def _figure(f: Figure) -> str:

@@ -59,15 +59,17 @@ def _standard_loads(study: Any) -> Section:
     rows = []
     for case in study.cases:
         label = "half" if case.mass < study.body_mass else "full"
-        for zname in ("rear", "middle", "front"):
+        merged = " (merged: = region)" if case.zones.merged else ""
+        for zname in ("rear", "middle", "front", *case.zones.footprint.names):
             z = case.zones[zname]
-            if z.patches == 0:
+            if z.patches == 0 and zname in ("rear", "middle", "front"):
                 continue
+            region = zname not in ("rear", "middle", "front")
             rows.append(
                 (
                     f"{label} ({case.mass:g} kg)",
                     case.snow_modulus / 1e6,
-                    zname,
+                    (zname.replace("_", " ") + " (region)") if region else zname + merged,
                     z.length * 1e3,
                     z.area * 1e4,
                     z.mean_pressure / 1e3,
@@ -79,8 +81,8 @@ def _standard_loads(study: Any) -> Section:
             )
     table = Table(
         [
-            "load", "snow E [MPa]", "zone", "length [mm]", "area [cm²]", "mean p [kPa]",
-            "max p [kPa]", "load share [%]", "patches", "converged",
+            "load", "snow modulus [MPa]", "zone / region", "contact [mm]", "area [cm²]",
+            "mean p [kPa]", "max p [kPa]", "load share [%]", "patches", "converged",
         ],
         rows,
         floatfmt=".3g",
@@ -97,7 +99,10 @@ def _standard_loads(study: Any) -> Section:
             + "contact on elastic snow with force "
             "and moment balance (Kalliorinne et al. 2023, eq. 2–3), equivalent modulus E' of the "
             f"ski base and the snow (eq. 2), {first.model} model, {study.n_points} stations "
-            "along the ski.",
+            "along the ski. Zones are the paper's (whole contact patches); once the patches "
+            "merge across the kick zone they are the regions and say so. Regions are fixed by "
+            "the ski (rear glide: tail to the rear kick-zone mark; kick zone; front glide; "
+            "without a kick zone, rear and front of the balance point) and never jump.",
         ),
         (table, *_contact_figures(study)),
     )

@@ -8,7 +8,7 @@ and the maps over load and snow (a resumable sweep, Kalliorinne et al. 2023, Fig
 
 from __future__ import annotations
 
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -70,9 +70,11 @@ def standard_cases(
     profile_source: str = "beam",
     n_points: int = DEFAULT_N_POINTS,
     ski_model: str = "rigid",
+    masses: Sequence[float] | None = None,
 ) -> tuple[Case, ...]:
     """The cases at the standard loads: half and full body weight at ``load_position`` on every
-    snow of ``snows`` [Pa] (ascending), each solved by :func:`solve_case`."""
+    snow of ``snows`` [Pa] (ascending), each solved by :func:`solve_case` (``masses`` [kg]
+    replaces the two loads)."""
     return tuple(
         solve_case(
             ski,
@@ -83,7 +85,7 @@ def standard_cases(
             n_points=n_points,
             ski_model=ski_model,
         )
-        for m in (0.5 * body_mass, body_mass)
+        for m in ((0.5 * body_mass, body_mass) if masses is None else masses)
         for e in sorted(float(v) for v in snows)
     )
 
@@ -104,6 +106,7 @@ def study_ski(
     scheduler: str | None = None,
     ski_model: str = "rigid",
     compare_models: bool = True,
+    progress: Callable[..., None] | None = None,
 ) -> SkiStudy:
     """Compute what the report of ``ski`` shows (see the module docstring).
 
@@ -127,16 +130,35 @@ def study_ski(
     compare_models
         Also solve the standard loads with the other ski model (:attr:`SkiStudy.other_cases`),
         so that the report shows how far the rigid-profile method is from the flexible ski.
+    progress
+        ``progress(done, total, status=...)`` after each map chunk and each standard case (a
+        progress bar: the maps of the default grid take about a minute).
     """
     from skisnow.bench import ski_metrics
+    from skisnow.ski import SHIPPED_SKIS, get_ski, ski_to_json
     from skisnow.sweep import SweepSpec, open_sweep, run_sweep
 
     s = resolve_ski(ski)
+    n_cases = 2 * len(tuple(snows)) * (2 if compare_models else 1)
+    state = {"maps": 0, "maps_total": 0, "cases": 0}
+
+    def tick(status: str) -> None:
+        if progress is not None:
+            total = state["maps_total"] + n_cases
+            progress(state["maps"] + state["cases"], total, status=status)
+
+    def on_chunk(done: int, total: int, *_: Any) -> None:
+        state["maps"], state["maps_total"] = done, total
+        tick("maps over load and snow")
+
     if dataset is None:
         if store is None:
             raise InputError("study_ski: give a sweep (dataset=) or a Zarr store to run it into")
+        # the ski's definition travels with the spec: the content decides, never the name
+        shipped = s.name in SHIPPED_SKIS and get_ski(s.name) == s
         spec = SweepSpec(
             skis=(s.name,),
+            ski_files=() if shipped else ((s.name, ski_to_json(s)),),
             masses=tuple(masses),
             load_positions=(load_position,),
             snow_moduli=tuple(map_moduli),
@@ -144,18 +166,29 @@ def study_ski(
             n_points=n_points,
             ski_model=ski_model,
         )
-        run_sweep(spec, store, workers=workers, scheduler=scheduler)
+        run_sweep(spec, store, workers=workers, scheduler=scheduler, on_progress=on_chunk)
         dataset = open_sweep(store)
     kwargs = dict(body_mass=body_mass, load_position=load_position, snows=snows,
                   profile_source=profile_source, n_points=n_points)  # fmt: skip
     other = "flexible" if ski_model == "rigid" else "rigid"
+
+    def cases(model: str) -> tuple[Case, ...]:
+        out = []
+        for m in (0.5 * body_mass, body_mass):
+            for e in sorted(float(v) for v in snows):
+                out.append(standard_cases(s, ski_model=model, **{**kwargs, "snows": (e,)},
+                                          masses=(m,))[0])  # fmt: skip
+                state["cases"] += 1
+                tick(f"standard loads ({model})")
+        return tuple(out)
+
     return SkiStudy(
         ski=s,
         body_mass=float(body_mass),
         load_position=float(load_position),
         metrics=ski_metrics(s, body_mass=body_mass, load_position=load_position),
-        cases=standard_cases(s, ski_model=ski_model, **kwargs),
-        other_cases=standard_cases(s, ski_model=other, **kwargs) if compare_models else (),
+        cases=cases(ski_model),
+        other_cases=cases(other) if compare_models else (),
         maps=dataset,
         profile_source=profile_source,
         n_points=int(n_points),

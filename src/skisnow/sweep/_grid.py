@@ -24,7 +24,15 @@ MODELS: tuple[str, ...] = ("strip", "surface")
 #: Where the loaded camber profile comes from (``skisnow.network.camber_profile(source=...)``).
 PROFILE_SOURCES: tuple[str, ...] = ("network", "beam")
 #: The zones reported for every contact solution (``skisnow.contact.contact_zones``).
-ZONES: tuple[str, ...] = ("rear", "middle", "front", "total")
+ZONES: tuple[str, ...] = (
+    "rear",
+    "middle",
+    "front",
+    "total",
+    "rear_glide",
+    "kick_zone",
+    "front_glide",
+)
 
 #: Ski base modulus E_base and Poisson ratio ν of Kalliorinne et al. 2023, §3.2 (used in eq. 2):
 #: the default base material :data:`skisnow.materials.BASE`.
