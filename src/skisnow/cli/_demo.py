@@ -124,16 +124,20 @@ def run_contact_demo(
                           ski_model=ski_model)  # fmt: skip
         solution, zones = case.solution, case.zones
         stem = f"{fig_no}_{ski}_{m:g}kg_x{x_mm:g}mm_{e_mpa:g}MPa"
-        title = f"{ski}: m = {m:g} kg at x_m = {x_mm:g} mm, E_counter = {e_mpa:g} MPa"
+        snow = "stone" if e_mpa >= 10_000 else f"snow modulus {e_mpa:g} MPa"
+        title = f"{ski}: {m:g} kg at {x_mm:g} mm from the balance point, {snow}"
         files += [str(p) for p in save_figure(plot_contact(solution, zones, title=title),
                                               out / stem)]  # fmt: skip
         cases.append(
             {
                 "figure": fig_no, "ski": ski, "mass_kg": m, "load_position_mm": x_mm,
                 "snow_modulus_mpa": e_mpa, "converged": solution.converged,
+                "profile_route": case.route, "merged": zones.merged,
                 **{f"{z}_length_mm": zones[z].length * 1e3 for z in ("rear", "middle", "front")},
                 **{f"{z}_mean_pressure_kpa": zones[z].mean_pressure / 1e3
                    for z in ("rear", "middle", "front")},
+                **{f"{r.name}_length_mm": r.length * 1e3 for r in zones.footprint.regions},
+                **{f"{r.name}_load_share": r.load_share for r in zones.footprint.regions},
             }
         )  # fmt: skip
 
@@ -195,7 +199,10 @@ def demo(
 
     t0 = time.perf_counter()
     doc = run_ski_demo(out, progress=not json_out)
-    source, note = network_or_beam()
+    from skisnow.pipeline import DEFAULT_PROFILE_SOURCE
+
+    network_or_beam()  # a broken shipped network must not pass silently
+    source, note = DEFAULT_PROFILE_SOURCE, ""
     if ski_model not in ("rigid", "flexible"):
         raise InputError(f"--ski-model must be rigid or flexible, got {ski_model!r}")
     contact = run_contact_demo(
@@ -208,20 +215,23 @@ def demo(
     if json_out:
         emit_json(doc)
         return
-    print_metrics_table(doc["metrics"], "Shipped skis on the virtual bench (65 kg skier)")
+    print_metrics_table(
+        doc["metrics"],
+        "Shipped skis on the virtual bench (65 kg skier, load at -80 mm from the balance point)",
+    )
     rows = [
         (c["figure"], c["ski"], c["mass_kg"], c["load_position_mm"], c["snow_modulus_mpa"],
-         c["rear_length_mm"], c["front_length_mm"], c["rear_mean_pressure_kpa"],
-         c["front_mean_pressure_kpa"])
+         c["rear_length_mm"], c["middle_length_mm"], c["front_length_mm"],
+         "yes" if c["merged"] else "no")
         for c in contact["cases"]
     ]  # fmt: skip
     from skisnow.cli._render import print_table
 
     print_table(
         f"The paper's load cases (Figures 4-7), {ski_model} ski"
-        + (f", profiles from the {source}" if ski_model == "rigid" else ""),
-        ["figure", "ski", "m [kg]", "x_m [mm]", "E [MPa]", "rear [mm]", "front [mm]",
-         "rear p [kPa]", "front p [kPa]"],
+        + (f", {source} route" if ski_model == "rigid" else ""),
+        ["figure", "ski", "mass [kg]", "load position [mm]", "snow modulus [MPa]",
+         "rear [mm]", "middle [mm]", "front [mm]", "merged"],
         rows,
     )  # fmt: skip
     if note:

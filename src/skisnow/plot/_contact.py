@@ -11,7 +11,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from skisnow.contact import ContactSolution, ZoneMetrics
-from skisnow.plot._style import COLORS, ZONE_COLORS, new_figure, style
+from skisnow.plot._style import COLORS, ZONE_COLORS, ZONE_LABELS, new_figure, style
 
 __all__ = ["plot_contact"]
 
@@ -29,8 +29,10 @@ def plot_contact(
     """Figure of one contact solution (x along the ski [mm], heights [µm], pressure [kPa]).
 
     ``zones`` (from :func:`~skisnow.contact.contact_zones`) shades the rear/middle/front
-    contact intervals. ``height_range_um`` caps the height axis (default: 4× the deepest snow
-    displacement, at least 100 µm), so that the pocket and the deformed snow are both visible.
+    contact intervals (named in the legend; a merged footprint says that its zones are the
+    regions) and draws the kick-zone marks. ``height_range_um`` caps the height axis (default:
+    4× the deepest snow displacement, at least 100 µm), so that the pocket and the deformed
+    snow are both visible.
     ``reference``: a second solution of the same case drawn dashed (its positioned ski base and
     pressure), e.g. the rigid profile beside the flexible ski's bent base.
     """
@@ -50,13 +52,32 @@ def plot_contact(
     top = height_range_um if height_range_um is not None else max(4 * depth, 100.0)
     bottom = -1.3 * max(depth, 1.0)
 
-    fig, axes = new_figure(1, 1, width=7.5, height=3.2)
+    fig, axes = new_figure(1, 1, width=7.5, height=3.9)
     ax = axes[0, 0]
     with style():
+        shading = []
         if zones is not None:
+            from matplotlib.patches import Patch
+
+            region = {"rear": "rear_glide", "middle": "kick_zone", "front": "front_glide"}
             for name in ("rear", "middle", "front"):
                 for a, b in zones[name].intervals:
                     ax.axvspan(a * 1e3, b * 1e3, color=ZONE_COLORS[name], alpha=0.12, lw=0)
+                if zones[name].intervals:
+                    text = (ZONE_LABELS[region[name]].replace("(region)", "(merged footprint)")
+                            if zones.merged else ZONE_LABELS[name].split(" (")[0])  # fmt: skip
+                    shading.append(Patch(color=ZONE_COLORS[name], alpha=0.25, label=text))
+            if zones.kick_zone is not None:
+                for k in zones.kick_zone:
+                    ax.axvline(k * 1e3, color=ZONE_COLORS["kick_zone"], ls="--", lw=0.8)
+                shading.append(
+                    Patch(
+                        facecolor="none",
+                        edgecolor=ZONE_COLORS["kick_zone"],
+                        ls="--",
+                        label="kick-zone marks",
+                    )
+                )
         ax.plot(x_mm, ski * 1e6, color=COLORS["profile"], label=label)
         if reference is not None:
             r = reference
@@ -68,7 +89,7 @@ def plot_contact(
         ax.plot(x_mm, snow * 1e6, color=COLORS["snow"], lw=0.9, label="deformed snow")
         ax.set_ylim(bottom, top)
         ax.set_xlim(x_mm[0], x_mm[-1])
-        ax.set_xlabel("x from balance point [mm]")
+        ax.set_xlabel("x from the balance point [mm] (tip →)")
         ax.set_ylabel("height [µm]")
         ax2 = ax.twinx()
         ax2.plot(x_mm, p * 1e-3, color=COLORS["pressure"], lw=1.0, label="apparent pressure")
@@ -105,9 +126,22 @@ def plot_contact(
         exaggeration = um_per_px_x / um_per_px_y
         ax.set_title(
             (title + "\n" if title else "")
-            + f"E' = {s.modulus / 1e6:.0f} MPa, {s.model} model; vertical exaggeration "
-            f"×{exaggeration:,.0f}",
+            + f"contact modulus of snow and base {s.modulus / 1e6:.0f} MPa, {s.model} model; "
+            f"heights ×{exaggeration:,.0f} against lengths",
         )
-        lines = ax.get_lines() + ax2.get_lines()
-        ax.legend(lines, [ln.get_label() for ln in lines], loc="upper right")
+        lines = [
+            ln for ln in ax.get_lines() + ax2.get_lines() if not ln.get_label().startswith("_")
+        ]
+        handles = [*lines, *shading]
+        # the legend under the axes: it never hides the contact or the load arrow
+        ax.legend(
+            handles,
+            [h.get_label() for h in handles],
+            loc="upper center",
+            bbox_to_anchor=(0.5, -0.2),
+            ncols=4,
+            fontsize="small",
+            frameon=False,
+        )
+        fig.subplots_adjust(bottom=1.25 / fig.get_figheight())
     return fig

@@ -18,6 +18,7 @@ from skisnow._errors import InputError
 from skisnow.plot._style import (
     COLORS,
     ZONE_COLORS,
+    ZONE_LABELS,
     modulus_colorbar,
     modulus_colors,
     new_figure,
@@ -94,11 +95,11 @@ def plot_zone_map(
                 label="Breitschädel (h < 50 µm)",
             )
             ax.legend(loc="best", frameon=False)
-        ax.set_title(f"{zone} zone")
-        ax.set_xlabel("load m [kg]")
+        ax.set_title(ZONE_LABELS.get(zone, zone))
+        ax.set_xlabel("load on the ski [kg]")
     axes[0][0].set_ylabel(LABELS.get(variable, variable))
-    modulus_colorbar(fig, axes[0], moduli, label="snow modulus E_counter [MPa]")
-    fig.suptitle(title or f"{ski} ski, load at x_m = {x_m:g} mm")
+    modulus_colorbar(fig, axes[0], moduli, label="snow modulus [MPa]")
+    fig.suptitle(title or f"{ski} ski, load at {x_m:g} mm from the balance point")
     return fig
 
 
@@ -108,14 +109,22 @@ def plot_load_share(
     ski: str | None = None,
     load_position_mm: float | None = None,
     snow_modulus_mpa: float | None = None,
-    zones: Sequence[str] = ("rear", "middle", "front"),
+    zones: Sequence[str] | None = None,
 ) -> Figure:
-    """How the load m·g is shared between the zones versus the loaded mass.
+    """How the load m·g is shared between the regions of the ski versus the loaded mass.
 
     Left: stacked shares at one snow modulus (default: the median of the sweep). Right: the rear
-    share for every modulus (one line each), showing how much the snow moves the load around.
+    glide's share for every modulus (one line each), showing how much the snow moves the load
+    around. ``zones`` default: the regions fixed by the ski (rear glide, kick zone, front glide),
+    whose shares never jump when two contact patches join; a sweep stored before the regions
+    existed falls back to the paper's zones.
     """
     sub, ski, x_m = _select(ds, ski, load_position_mm)
+    stored = [str(z) for z in ds["zone"].values]
+    if zones is None:
+        regions = [z for z in ("rear_glide", "kick_zone", "front_glide") if z in stored]
+        zones = regions if regions else ["rear", "middle", "front"]
+    rear = zones[0]
     moduli = [float(e) for e in sub["snow_modulus_mpa"].values]
     if snow_modulus_mpa is None:
         snow_modulus_mpa = moduli[len(moduli) // 2]
@@ -124,21 +133,21 @@ def plot_load_share(
     fig, axes = new_figure(2, 1, width=7.6, height=3.0)
     ax = axes[0][0]
     shares = [np.nan_to_num(one["load_share"].sel(zone=z).values) * 100 for z in zones]
-    ax.stackplot(mass, shares, labels=list(zones), colors=[ZONE_COLORS[z] for z in zones],
-                 alpha=0.75)  # fmt: skip
+    ax.stackplot(mass, shares, labels=[ZONE_LABELS.get(z, z) for z in zones],
+                 colors=[ZONE_COLORS[z] for z in zones], alpha=0.75)  # fmt: skip
     ax.set_ylim(0, 100)
-    ax.set_xlabel("load m [kg]")
+    ax.set_xlabel("load on the ski [kg]")
     ax.set_ylabel(LABELS["load_share"])
-    ax.set_title(f"E_counter = {float(one['snow_modulus_mpa']):g} MPa")
+    ax.set_title(f"snow modulus {float(one['snow_modulus_mpa']):g} MPa")
     ax.legend(loc="lower right", frameon=True)
     ax = axes[0][1]
     for e, c in zip(moduli, modulus_colors(moduli), strict=True):
-        ax.plot(mass, sub["load_share"].sel(zone="rear", snow_modulus_mpa=e).values * 100, color=c)
-    ax.set_xlabel("load m [kg]")
-    ax.set_ylabel("rear-zone load share [%]")
-    ax.set_title("rear share, all snows")
-    modulus_colorbar(fig, axes[0][1], moduli, label="E_counter [MPa]")
-    fig.suptitle(f"{ski} ski, load at x_m = {x_m:g} mm: load partitioning")
+        ax.plot(mass, sub["load_share"].sel(zone=rear, snow_modulus_mpa=e).values * 100, color=c)
+    ax.set_xlabel("load on the ski [kg]")
+    ax.set_ylabel(f"{ZONE_LABELS.get(rear, rear)} load share [%]")
+    ax.set_title(f"{ZONE_LABELS.get(rear, rear)}, every snow")
+    modulus_colorbar(fig, axes[0][1], moduli, label="snow modulus [MPa]")
+    fig.suptitle(f"{ski} ski, load at {x_m:g} mm from the balance point: load partitioning")
     return fig
 
 

@@ -137,17 +137,26 @@ def modulus_colors(moduli: Sequence[float]) -> list[Any]:
     return [cmap(0.05 + 0.9 * (m - lo) / span) for m in moduli]
 
 
-def modulus_colorbar(fig: Figure, axes: Any, moduli: Sequence[float], *, label: str) -> None:
-    """A colour bar for the modulus lines."""
+def modulus_colorbar(
+    fig: Figure, axes: Any, moduli: Sequence[float], *, label: str = "snow modulus [MPa]"
+) -> None:
+    """A colour bar for the modulus lines, over the data's range (the smallest to the largest
+    modulus drawn, both ends labelled), in the lines' colours (:func:`modulus_colors`)."""
     import matplotlib.colors as mcolors
+    import numpy as np
     from matplotlib.cm import ScalarMappable
 
     lo, hi = min(moduli), max(moduli)
-    pad = 0.05 / 0.9 * (hi - lo) if hi > lo else 1.0
-    norm = mcolors.Normalize(vmin=lo - pad, vmax=hi + pad)
-    sm = ScalarMappable(norm=norm, cmap=MODULUS_CMAP)
+    if hi <= lo:
+        lo, hi = lo - 1.0, hi + 1.0
+    cmap = mcolors.ListedColormap(matplotlib.colormaps[MODULUS_CMAP](np.linspace(0.05, 0.95, 256)))
+    sm = ScalarMappable(norm=mcolors.Normalize(vmin=lo, vmax=hi), cmap=cmap)
     with style():
-        fig.colorbar(sm, ax=axes, label=label, shrink=0.9, pad=0.02, fraction=0.04)
+        cb = fig.colorbar(sm, ax=axes, label=label, shrink=0.9, pad=0.02, fraction=0.04)
+        ticks = [
+            t for t in cb.get_ticks() if lo < t < hi and min(t - lo, hi - t) > 0.06 * (hi - lo)
+        ]
+        cb.set_ticks([lo, *ticks, hi])
 
 
 def _metadata(fmt: str) -> dict[str, Any]:
