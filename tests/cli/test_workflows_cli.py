@@ -78,10 +78,12 @@ def test_cycle_from_a_file_and_a_template(capsys, tmp_path: Path) -> None:
     assert [f["force_n"] for f in frames] == pytest.approx(
         [9.80665 * (40 + 10 * i) for i in range(6)]
     )
-    assert (tmp_path / "c" / "cycle.csv").is_file() and (tmp_path / "c" / "cycle.png").is_file()
+    # one name scheme for one cycle or several: cycle_<history>.*
+    assert (tmp_path / "c" / "cycle_binding.csv").is_file()
+    assert (tmp_path / "c" / "cycle_binding.png").is_file()
     import xarray as xr
 
-    with xr.open_dataset(tmp_path / "c" / "cycle.nc") as ds:  # the whole Dataset, SI
+    with xr.open_dataset(tmp_path / "c" / "cycle_binding.nc") as ds:  # the whole Dataset, SI
         assert ds["load"].values == pytest.approx([f["force_n"] for f in frames])
     gif = tmp_path / "stride.gif"
     code, doc, _ = run(

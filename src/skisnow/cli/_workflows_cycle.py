@@ -97,7 +97,8 @@ def cycle(
         str,
         typer.Option(
             "--profile-source",
-            help="auto (network inside its trained domain, else beam), network or beam.",
+            help="auto (= beam, the default route of every ski), beam, or network (the shipped "
+            "camber network, inside its trained domain only).",
         ),
     ] = "auto",
     ski_model: str = _MODEL,
@@ -107,6 +108,14 @@ def cycle(
         Path | None,
         typer.Option("--animation", help="Write an animation (.gif, or .mp4 with ffmpeg)."),
     ] = None,
+    animation_speed: Annotated[
+        float,
+        typer.Option(
+            "--animation-speed",
+            help="Playback speed of the animation: 1 = real time (default), 0.25 = slow "
+            "motion; printed on every frame.",
+        ),
+    ] = 1.0,
     show_template: Annotated[
         bool, typer.Option("--show-template", help="Print the template's knots and source.")
     ] = False,
@@ -121,6 +130,8 @@ def cycle(
     _check_positive("--snow-modulus-mpa", snow_modulus_mpa)
     if ski_model not in ("rigid", "flexible"):
         raise InputError(f"--ski-model must be rigid or flexible, got {ski_model!r}")
+    if not (np.isfinite(animation_speed) and animation_speed > 0):
+        raise InputError(f"--animation-speed must be a positive number, got {animation_speed!r}")
     if frames is not None and frames < 2:
         raise InputError(f"--frames must be at least 2, got {frames}")
     histories = []
@@ -170,7 +181,8 @@ def cycle(
         results.append((name, ds))
     files: list[str] = []
     for name, ds in results:
-        suffix = f"_{name}" if len(results) > 1 else ""
+        # the same names for one cycle as for several: cycle_<name>.csv, .nc, .png, .svg
+        suffix = f"_{name}"
         if out is not None:
             from skisnow.plot import plot_cycle, save_figure
 
@@ -182,12 +194,14 @@ def cycle(
         if animation is not None:
             from skisnow.plot import animate_cycle
 
-            target = animation.with_name(f"{animation.stem}{suffix}{animation.suffix}")
+            many = len(results) > 1
+            target = animation.with_name(f"{animation.stem}{suffix if many else ''}"
+                                         f"{animation.suffix}")  # fmt: skip
             with (
                 progress_bar(f"animation {name}", disable=json_out) as update,
                 atomic_path(target) as tmp,
             ):
-                animate_cycle(ds, tmp, progress=update)
+                animate_cycle(ds, tmp, speed=animation_speed, progress=update)
             files.append(str(target))
     summaries = [{"cycle": name, **summary_record(ds)} for name, ds in results]
     notes = [ds.attrs["route_note"] for _, ds in results if ds.attrs["route_note"]]

@@ -12,7 +12,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from skisnow._errors import InputError
-from skisnow.plot._style import COLORS, ZONE_COLORS, new_figure, style
+from skisnow.plot._style import COLORS, ZONE_COLORS, ZONE_LABELS, new_figure, style
 
 __all__ = ["animate_cycle", "plot_cycle", "plot_fleet", "plot_snow_ranking"]
 
@@ -90,9 +90,10 @@ def plot_snow_ranking(ranking: Any) -> Figure:
 
 
 def plot_cycle(ds: Any) -> Figure:
-    """A load cycle (:func:`~skisnow.workflows.run_cycle`): load and centre of pressure, zone
-    lengths, mean and peak pressures, load shares; the frames where the grip wax touches the
-    snow are shaded."""
+    """A load cycle (:func:`~skisnow.workflows.run_cycle`): load and centre of pressure, contact
+    lengths, mean and peak pressures, load shares — by region of the ski (rear glide, kick zone,
+    front glide: they never jump when two contact patches join); the frames where the grip wax
+    touches the snow are shaded."""
     fig, axes = new_figure(1, 4, width=7.5, height=8.0, sharex=True)
     t = ds["time"].values
     touch = ds["kick_contact"].values.astype(bool)
@@ -101,33 +102,39 @@ def plot_cycle(ds: Any) -> Figure:
         ax.plot(t, ds["load"].values, color=COLORS["load"], label="force [N]")
         ax.set_ylabel("force on the ski [N]")
         ax2 = ax.twinx()
-        ax2.plot(t, ds["load_position"].values * 1e3, color="0.3", ls="--", label="x_m")
-        ax2.set_ylabel("centre of pressure x_m [mm]")
+        ax2.plot(t, ds["load_position"].values * 1e3, color="0.3", ls="--",
+                 label="centre of pressure")  # fmt: skip
+        ax2.set_ylabel("centre of pressure from\nthe balance point [mm]")
         ax2.grid(False)
-        for name in ("rear", "middle", "front", "total"):
+        lines = ax.get_lines() + ax2.get_lines()
+        ax.legend(lines, [ln.get_label() for ln in lines], loc="upper right", ncols=2)
+        stored = [str(z) for z in ds["zone"].values]
+        regions = [z for z in ("rear_glide", "kick", "front_glide") if z in stored]
+        if not regions:  # a cycle stored before the regions existed
+            regions = ["rear", "middle", "front"]
+        for name in [*regions, "total"]:
             z = ds.sel(zone=name)
             c = ZONE_COLORS[name]
-            axes[1, 0].plot(t, z["length"].values * 1e3, color=c, label=name)
-            axes[2, 0].plot(t, z["mean_pressure"].values * 1e-3, color=c, label=f"{name} mean")
+            label = "kick zone" if name == "kick" else ZONE_LABELS[name].split(" (")[0]
+            axes[1, 0].plot(t, z["length"].values * 1e3, color=c, label=label)
+            axes[2, 0].plot(t, z["mean_pressure"].values * 1e-3, color=c, label=f"{label} mean")
             if name == "total":
                 axes[2, 0].plot(t, z["max_pressure"].values * 1e-3, color=c, ls=":", label="peak")
             else:
-                axes[3, 0].plot(t, z["load_share"].values, color=c, label=name)
-        kick = ds.sel(zone="kick")
-        axes[1, 0].plot(t, kick["length"].values * 1e3, color="k", ls="--", label="kick marks")
-        axes[3, 0].plot(t, kick["load_share"].values, color="k", ls="--", label="kick marks")
+                axes[3, 0].plot(t, z["load_share"].values * 100, color=c, label=label)
         axes[1, 0].set_ylabel("contact length [mm]")
         axes[2, 0].set_ylabel("pressure [kPa]")
-        axes[3, 0].set_ylabel("load share")
+        axes[3, 0].set_ylabel("load share [%]")
         axes[3, 0].set_xlabel("time [s]")
-        axes[1, 0].legend(loc="upper right", ncols=5)
-        axes[3, 0].legend(loc="upper right", ncols=4)
+        axes[1, 0].legend(loc="upper right", ncols=4)
+        axes[2, 0].legend(loc="upper right", ncols=3)
+        axes[3, 0].legend(loc="upper right", ncols=3)
         for row in axes[:, 0]:
             _shade(row, t, touch)
         kick = "grip wax touches (shaded)" if ds.attrs.get("kick_zone") else "no kick zone"
         axes[0, 0].set_title(
-            f"{ds.attrs['ski']} — {ds.attrs['history']} on {ds.attrs['snow_modulus'] * 1e-6:g} "
-            f"MPa snow ({ds.attrs['route']} route); {kick}"
+            f"{ds.attrs['ski']} — {ds.attrs['history']}, snow modulus "
+            f"{ds.attrs['snow_modulus'] * 1e-6:g} MPa ({ds.attrs['route']} route); {kick}"
         )
     return fig
 
@@ -141,15 +148,35 @@ def _shade(ax: Any, t: np.ndarray, mask: np.ndarray) -> None:
         ax.axvspan(edges[a], edges[b], color=ZONE_COLORS["middle"], alpha=0.12, lw=0)
 
 
+def _frame_plan(t: np.ndarray, speed: float, max_fps: float) -> tuple[np.ndarray, float, float]:
+    """Which frames to show and at what rate so that the animation plays at ``speed`` × real
+    time with at most ``max_fps`` frames a second (GIF players clamp faster frames: a browser
+    shows a GIF frame of less than 20 ms for 100 ms). Returns (frame indices, fps, the speed
+    actually played)."""
+    dt = float(np.median(np.diff(t))) if t.size > 1 else 1.0
+    rate = speed / dt if dt > 0 else max_fps  # frames of the cycle per second of playback
+    step = max(1, int(np.ceil(rate / max_fps)))
+    fps = rate / step
+    # a GIF stores whole hundredths of a second per frame: play what it can store
+    delay = max(2, round(100.0 / fps)) / 100.0
+    return np.arange(0, t.size, step), 1.0 / delay, dt * step / delay
+
+
 def animate_cycle(
     ds: Any,
     path: str | Path,
     *,
-    fps: int = 20,
+    speed: float = 1.0,
+    max_fps: float = 25.0,
+    fps: float | None = None,
     progress: Callable[[int, int], None] | None = None,
 ) -> Path:
-    """Write an animation of a load cycle: loaded profile, deformed snow surface and pressure.
+    """Write an animation of a load cycle: loaded profile, deformed snow surface and pressure,
+    and the force and centre of pressure over the cycle with the moment shown.
 
+    It plays at ``speed`` × real time (default 1: real time), frames thinned to at most
+    ``max_fps`` a second; the speed played is printed on every frame ("real time", or "×0.25:
+    slow motion"). ``fps`` forces a frame rate (every frame shown; the speed printed follows).
     GIF (Matplotlib's PillowWriter) for ``.gif``; MP4 (FFMpegWriter) for ``.mp4``, which needs
     ``ffmpeg`` on PATH. ``ds`` must hold the fields (``run_cycle(..., keep_fields=True)``).
 
@@ -167,6 +194,8 @@ def animate_cycle(
         )
     if "pressure" not in ds:
         raise InputError("the cycle dataset holds no fields: run it with keep_fields=True")
+    if not (np.isfinite(speed) and speed > 0):
+        raise InputError(f"speed must be a positive factor of real time, got {speed!r}")
     x = ds["x"].values * 1e3
     t = ds["time"].values
     h = ds["height"].values * 1e3
@@ -178,17 +207,29 @@ def animate_cycle(
     theta = np.nan_to_num(ds["rotation"].values)
     xm = ds["load_position"].values
     ski_y = h - (delta[:, None] + theta[:, None] * (ds["x"].values[None, :] - xm[:, None])) * 1e3
-    fig, axes = new_figure(1, 2, width=7.0, height=4.6, sharex=True)
-    ax_s, ax_p = axes[0, 0], axes[1, 0]
+    if fps is None:
+        shown, fps, played = _frame_plan(t, speed, max_fps)
+    else:
+        shown = np.arange(t.size)
+        dt = float(np.median(np.diff(t))) if t.size > 1 else 1.0
+        played = dt * fps
+    # GIF frames last whole hundredths of a second: real time to within that, speed printed
+    pace = (f"real time (×{played:.2f})" if abs(played - 1.0) < 0.1 else
+            f"×{played:.2g} " + ("slow motion" if played < 1 else "fast"))  # fmt: skip
+    force = ds["load"].values
+    fig, axes = new_figure(1, 3, width=7.0, height=6.4, sharex=False)
+    ax_s, ax_p, ax_f = axes[0, 0], axes[1, 0], axes[2, 0]
     kz = ds.attrs.get("kick_zone") or []
     with style():
         (line_ski,) = ax_s.plot(x, ski_y[0], color=COLORS["profile"], label="ski base")
         (line_snow,) = ax_s.plot(x, -u[0], color=COLORS["snow"], lw=0.9, label="snow surface")
         (line_p,) = ax_p.plot(x, p[0], color=COLORS["pressure"])
-        marker = ax_s.axvline(xm[0] * 1e3, color=COLORS["load"], ls=":", lw=1.0)
+        marker = ax_s.axvline(xm[0] * 1e3, color=COLORS["load"], ls=":", lw=1.0,
+                              label="centre of pressure")  # fmt: skip
         if len(kz) == 2:
             for ax in (ax_s, ax_p):
-                ax.axvspan(kz[0] * 1e3, kz[1] * 1e3, color=ZONE_COLORS["middle"], alpha=0.08)
+                ax.axvspan(kz[0] * 1e3, kz[1] * 1e3, color=ZONE_COLORS["kick_zone"], alpha=0.08,
+                           label="kick zone" if ax is ax_s else None)  # fmt: skip
         # scale to the running surface (central 60 % of the ski) and the deepest snow, not to
         # the shovel: the contact is a fraction of a millimetre
         mid = (x > x[0] + 0.2 * (x[-1] - x[0])) & (x < x[-1] - 0.2 * (x[-1] - x[0]))
@@ -197,24 +238,35 @@ def animate_cycle(
         ax_s.set_ylim(-1.5 * max(depth, 0.01), 1.3 * max(top, 0.05))
         ax_p.set_ylim(0, max(1.0, float(np.nanmax(p)) * 1.05))
         ax_s.set_ylabel("height [mm]")
-        ax_s.legend(loc="upper right")
+        ax_s.legend(loc="upper right", ncols=2, fontsize="small")
         ax_p.set_ylabel("pressure [kPa]")
         ax_p.set_xlabel("x from the balance point [mm] (tip →)")
+        # the force and the centre of pressure over the whole cycle, the moment shown marked
+        ax_f.plot(t, force, color=COLORS["load"], label="force on the ski [N]")
+        ax_f.set_ylabel("force [N]")
+        ax_f.set_xlabel("time [s]")
+        ax_c = ax_f.twinx()
+        ax_c.plot(t, xm * 1e3, color="0.3", ls="--", label="centre of pressure [mm]")
+        ax_c.set_ylabel("centre of pressure [mm]")
+        ax_c.grid(False)
+        now = ax_f.axvline(t[0], color="black", lw=1.0)
+        lines = ax_f.get_lines()[:1] + ax_c.get_lines()
+        ax_f.legend(lines, [ln.get_label() for ln in lines], loc="upper right", fontsize="small")
         title = ax_s.set_title("")
     writer = PillowWriter(fps=fps) if suffix == ".gif" else FFMpegWriter(fps=fps)
     path.parent.mkdir(parents=True, exist_ok=True)
-    force = ds["load"].values
     with style(), writer.saving(fig, str(path), dpi=80):
-        for i in range(t.size):
+        for k, i in enumerate(shown, start=1):
             line_ski.set_ydata(ski_y[i])
             line_snow.set_ydata(-u[i])
             line_p.set_ydata(p[i])
             marker.set_xdata([xm[i] * 1e3, xm[i] * 1e3])
+            now.set_xdata([t[i], t[i]])
             title.set_text(
                 f"{ds.attrs['ski']} — t = {t[i]:.2f} s, {force[i]:.0f} N at "
-                f"{xm[i] * 1e3:.0f} mm" + ("" if loaded[i] else " (unloaded)")
+                f"{xm[i] * 1e3:.0f} mm" + ("" if loaded[i] else " (unloaded)") + f" · {pace}"
             )
             writer.grab_frame()
             if progress is not None:
-                progress(i + 1, t.size)
+                progress(k, shown.size)
     return path

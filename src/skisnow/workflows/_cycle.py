@@ -32,9 +32,11 @@ __all__ = ["UNLOADED_MASS", "ZONES", "kick_contact_summary", "run_cycle"]
 #: the lightest load the camber bench (and the shipped networks) cover.
 UNLOADED_MASS: float = 5.0
 
-#: The zones reported per frame (``kick``: the contact between the kick-zone marks, whatever
-#: patch it belongs to — where the grip wax touches the snow; empty on a skate ski).
-ZONES: tuple[str, ...] = ("rear", "middle", "front", "total", "kick")
+#: The zones reported per frame: the paper's zones and the total, then the regions fixed by the
+#: ski (``kick``: the kick-zone region, the contact between the kick-zone marks whatever patch it
+#: belongs to — where the grip wax touches the snow; empty on a skate ski). The regions never
+#: jump when two contact patches join (:func:`skisnow.contact.footprint`).
+ZONES: tuple[str, ...] = ("rear", "middle", "front", "total", "rear_glide", "kick", "front_glide")
 
 _ZONE_FIELDS = {
     "length": ("m", "contact length"),
@@ -132,6 +134,7 @@ def run_cycle(
     for k in ("mean_pressure", "max_pressure"):
         zone_vals[k][:] = np.nan  # not defined without contact
     patches = np.zeros((n_t, nz), dtype=np.int64)
+    merged = np.zeros(n_t, dtype=bool)
     translation = np.full(n_t, np.nan)
     rotation = np.full(n_t, np.nan)
     converged = np.ones(n_t, dtype=bool)
@@ -171,6 +174,7 @@ def run_cycle(
                 for k in _ZONE_FIELDS:
                     zone_vals[k][i, j] = getattr(z, k)
                 patches[i, j] = z.patches
+            merged[i] = zones.merged
             translation[i], rotation[i] = sol.translation, sol.rotation
             converged[i] = sol.converged
             if keep_fields:
@@ -193,6 +197,11 @@ def run_cycle(
             "time",
             zone_vals["length"][:, ZONES.index("kick")] > 0,
             {"long_name": "grip wax touches the snow (contact between the kick-zone marks)"},
+        ),
+        "merged": (
+            "time",
+            merged,
+            {"long_name": "the contact patches joined across the regions: zones = regions"},
         ),
         "translation": ("time", translation, {"units": "m"}),
         "rotation": ("time", rotation, {"units": "rad"}),
