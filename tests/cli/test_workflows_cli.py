@@ -59,6 +59,7 @@ def test_pairs_flags_the_worst_pair(capsys, tmp_path: Path) -> None:
     assert [p["poor_match"] for p in doc["pairs"]] == [False, False]
     assert "d > 1" in doc["distance"]
     assert (tmp_path / "pairs.csv").is_file() and (tmp_path / "distances.csv").is_file()
+    assert (tmp_path / "pairs.png").is_file()  # --out promises figures: it writes them
 
 
 def test_cycle_from_a_file_and_a_template(capsys, tmp_path: Path) -> None:

@@ -320,8 +320,12 @@ def pairs(
     ]
     files: list[str] = []
     if out is not None:
+        from skisnow.plot import plot_pairs, save_figure
+
         files.append(str(write_csv(out / "pairs.csv", records)))
         files.append(str(write_csv(out / "distances.csv", matrix)))
+        fig = plot_pairs(result, threshold=POOR_MATCH_DISTANCE)
+        files += [str(p) for p in save_figure(fig, out / "pairs")]
     if json_out:
         emit_json(
             {

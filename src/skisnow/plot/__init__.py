@@ -30,7 +30,13 @@ from skisnow.plot._style import (
     figure_svg,
     save_figure,
 )
-from skisnow.plot._workflows import animate_cycle, plot_cycle, plot_fleet, plot_snow_ranking
+from skisnow.plot._workflows import (
+    animate_cycle,
+    plot_cycle,
+    plot_fleet,
+    plot_pairs,
+    plot_snow_ranking,
+)
 
 __all__ = [
     "FORMATS",
@@ -47,6 +53,7 @@ __all__ = [
     "plot_cycle",
     "plot_fleet",
     "plot_load_share",
+    "plot_pairs",
     "plot_passport",
     "plot_snow_ranking",
     "plot_zone_map",

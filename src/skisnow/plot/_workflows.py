@@ -14,7 +14,7 @@ from matplotlib.figure import Figure
 from skisnow._errors import InputError
 from skisnow.plot._style import COLORS, ZONE_COLORS, ZONE_LABELS, new_figure, style
 
-__all__ = ["animate_cycle", "plot_cycle", "plot_fleet", "plot_snow_ranking"]
+__all__ = ["animate_cycle", "plot_cycle", "plot_fleet", "plot_pairs", "plot_snow_ranking"]
 
 
 def plot_fleet(comparison: Any) -> Figure:
@@ -86,6 +86,60 @@ def plot_snow_ranking(ranking: Any) -> Figure:
             "order changes in the shaded bands" if ranking.changes else "order never changes"
         )
         ax_r.legend(loc="best")
+    return fig
+
+
+def plot_pairs(pairing: Any, *, threshold: float = 1.0) -> Figure:
+    """The pairing of a fleet (:func:`~skisnow.workflows.match_pairs`): the distance between
+    every two skis (left, the numbers written in the cells; the pairs chosen framed) and the
+    chosen pairs' distances with their three terms (right), against the poor-match threshold.
+    """
+    import matplotlib.colors as mcolors
+    from matplotlib.patches import Rectangle
+
+    from skisnow.plot._style import MAP_CMAP
+
+    skis = list(pairing.skis)
+    d = np.asarray(pairing.distances, dtype=float)
+    n = len(skis)
+    fig, axes = new_figure(2, 1, width=8.0, height=max(3.2, 0.35 * n + 2.0), layout="constrained")
+    ax_m, ax_b = axes[0, 0], axes[0, 1]
+    with style():
+        hi = float(np.nanmax(d)) if n > 1 and np.nanmax(d) > 0 else 1.0
+        im = ax_m.imshow(d, cmap=MAP_CMAP, norm=mcolors.Normalize(0.0, hi))
+        for i in range(n):
+            for j in range(n):
+                if i != j:
+                    ax_m.text(j, i, f"{d[i, j]:.2g}", ha="center", va="center", fontsize=7,
+                              color="white" if d[i, j] < 0.6 * hi else "black")  # fmt: skip
+        used: set[int] = set()
+        for a, b, _ in pairing.pairs:  # two skis may share a label: take each index once
+            i = next(k for k in range(n) if skis[k] == a and k not in used)
+            used.add(i)
+            j = next(k for k in range(n) if skis[k] == b and k not in used)
+            used.add(j)
+            for r, c in ((i, j), (j, i)):
+                ax_m.add_patch(Rectangle((c - 0.5, r - 0.5), 1, 1, fill=False, ec="red", lw=1.5))
+        ax_m.set_xticks(range(n), skis, rotation=45, ha="right")
+        ax_m.set_yticks(range(n), skis)
+        ax_m.grid(False)
+        fig.colorbar(im, ax=ax_m, label="distance (1 = the tolerances)", shrink=0.85)
+        ax_m.set_title("distance between every two skis (pairs framed)")
+        labels = [f"{a} + {b}" for a, b, _ in pairing.pairs]
+        y = np.arange(len(labels))
+        left = np.zeros(len(labels))
+        for term, color in (("camber", "#1f5fbf"), ("stiffness", "#8e44ad"),
+                            ("contact", "#e67e22")):  # fmt: skip
+            v = np.array([getattr(p[2], term) ** 2 for p in pairing.pairs])
+            ax_b.barh(y, v, left=left, color=color, label=f"{term} term²")
+            left += v
+        ax_b.axvline(threshold**2, color="red", ls="--", lw=1.0,
+                     label=f"poor match: d > {threshold:g}")  # fmt: skip
+        ax_b.set_yticks(y, labels)
+        ax_b.invert_yaxis()
+        ax_b.set_xlabel("distance² (sum of the terms²)")
+        ax_b.set_title("the pairs chosen, best first")
+        ax_b.legend(loc="lower right", fontsize="small")
     return fig
 
 
