@@ -80,7 +80,7 @@ def test_flexible_sweep(capsys, tmp_path: Path) -> None:
     store = tmp_path / "s.zarr"
     code = main(["sweep", "--ski", "classic", "--mass-kg", "40,60", "--load-position-mm", "-70",
                  "--snow-modulus-mpa", "20,200", "--ski-model", "flexible", "--workers", "0",
-                 "--n-points", "512", "--out", str(store), "--json"])  # fmt: skip
+                 "--points", "512", "--out", str(store), "--json"])  # fmt: skip
     assert code == 0, capsys.readouterr().out
     ds = open_sweep(store)
     assert ds.attrs["ski_model"] == "flexible"

@@ -53,7 +53,7 @@ def test_sweep_and_report_take_a_ski_file(
 ) -> None:
     store = tmp_path / "s.zarr"
     grid = ["--mass-kg", "30,60", "--load-position-mm", "-120", "--snow-modulus-mpa", "100",
-            "--n-points", "512", "--workers", "0", "--json"]  # fmt: skip
+            "--points", "512", "--workers", "0", "--json"]  # fmt: skip
     # --profile-source auto: the beam for a ski file (the network exists only for shipped skis)
     _run(capsys, ["sweep", "--ski", str(ski_file), "--out", str(store), *grid])
     ds = open_sweep(store)
@@ -63,7 +63,7 @@ def test_sweep_and_report_take_a_ski_file(
     np.testing.assert_array_equal(ds.length_mm.values, ref.length_mm.values)
     assert bool(ds.converged.all())
     report = ["report", str(ski_file), "--out", str(tmp_path / "r"), "--mass-kg", "20,60",
-              "--snow-modulus-mpa", "100", "--n-points", "512", "--json"]  # fmt: skip
+              "--snow-modulus-mpa", "100", "--points", "512", "--json"]  # fmt: skip
     doc = _run(capsys, report)
     assert Path(doc["report"]).name == "classic_report.html"  # the name inside the file
     assert (tmp_path / "r" / "my_classic_maps_beam.zarr").is_dir()

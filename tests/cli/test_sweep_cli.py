@@ -15,7 +15,7 @@ from skisnow.sweep import open_sweep
 
 SMALL = [
     "--ski", "skate", "--ski", "classic", "--mass-kg", "30,60", "--load-position-mm", "-120",
-    "--snow-modulus-mpa", "50,200", "--n-points", "512", "--profile-source", "beam",
+    "--snow-modulus-mpa", "50,200", "--points", "512", "--profile-source", "beam",
 ]  # fmt: skip
 
 
@@ -30,10 +30,13 @@ def test_sweep_resume_and_plot(tmp_path: Path, capsys: pytest.CaptureFixture[str
     assert doc["points"] == 8 and doc["computed_chunks"] == 4 and doc["skipped_chunks"] == 0
     ds = open_sweep(store)
     assert ds.sizes == {"ski": 2, "mass_kg": 2, "load_position_mm": 1, "snow_modulus_mpa": 2,
-                        "zone": 4}  # fmt: skip
+                        "zone": 7}  # fmt: skip
     assert ds.snow_modulus_mpa.values.tolist() == [50.0, 200.0]
     assert bool(ds.converged.all())
     np.testing.assert_allclose(ds.load_share.sel(zone="total"), 1.0, atol=1e-6)  # force balance
+    # the regions (rear glide, kick zone, front glide) carry the whole load
+    regions = ds.load_share.sel(zone=["rear_glide", "kick_zone", "front_glide"]).sum("zone")
+    np.testing.assert_allclose(regions, 1.0, atol=1e-6)
     # the same command again: nothing to compute
     assert main(["sweep", *SMALL, "--workers", "0", "--out", str(store), "--json"]) == 0
     again = _json(capsys)
@@ -48,12 +51,12 @@ def test_sweep_resume_and_plot(tmp_path: Path, capsys: pytest.CaptureFixture[str
 def test_sweep_errors_are_one_line(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     store = tmp_path / "s.zarr"
     assert main(["sweep", *SMALL[:4], "--mass-kg", "30", "--snow-modulus-mpa", "50",
-                 "--n-points", "512", "--profile-source", "beam", "--workers", "0",
+                 "--points", "512", "--profile-source", "beam", "--workers", "0",
                  "--out", str(store)]) == 0  # fmt: skip
     capsys.readouterr()
     # a different grid into the same store
     code = main(["sweep", *SMALL[:4], "--mass-kg", "30", "--snow-modulus-mpa", "80",
-                 "--n-points", "512", "--profile-source", "beam", "--workers", "0",
+                 "--points", "512", "--profile-source", "beam", "--workers", "0",
                  "--out", str(store)])  # fmt: skip
     err = capsys.readouterr().err
     assert code == 2 and "different sweep" in err and "snow_moduli" in err
@@ -101,7 +104,7 @@ def test_sweep_on_an_existing_scheduler(tmp_path: Path, capsys: pytest.CaptureFi
 
 def test_report_command(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     code = main(["report", "classic", "--out", str(tmp_path), "--profile-source", "beam",
-                 "--mass-kg", "20,40,60", "--snow-modulus-mpa", "50,200", "--n-points", "512",
+                 "--mass-kg", "20,40,60", "--snow-modulus-mpa", "50,200", "--points", "512",
                  "--json"])  # fmt: skip
     assert code == 0
     path = Path(_json(capsys)["report"])
@@ -134,3 +137,23 @@ def test_contact_part_of_the_demo_writes_every_figure(tmp_path: Path) -> None:
         assert 'href="explore.html"' in (tmp_path / f"{ski}_report.html").read_text("utf-8")
     assert "explore.html" in names
     assert all(c["converged"] for c in doc["cases"])
+
+
+def test_the_old_station_option_name_still_works(tmp_path, capsys) -> None:
+    """One option name per concept: --points everywhere; --n-points stays as a hidden alias."""
+    from skisnow.cli import main
+
+    args = ["sweep", "--ski", "skate", "--mass-kg", "30", "--load-position-mm", "-120",
+            "--snow-modulus-mpa", "100", "--profile-source", "beam", "--workers", "0",
+            "--json"]  # fmt: skip
+    assert main([*args, "--n-points", "256", "--out", str(tmp_path / "a.zarr")]) == 0
+    old = capsys.readouterr()
+    assert "--n-points is now --points" in old.err
+    assert main([*args, "--points=256", "--out", str(tmp_path / "b.zarr")]) == 0
+    assert "--n-points" not in capsys.readouterr().err
+    from typer.testing import CliRunner
+
+    from skisnow.cli._app import app
+
+    help_text = CliRunner().invoke(app, ["sweep", "--help"]).output
+    assert "--points" in help_text and "--n-points" not in help_text

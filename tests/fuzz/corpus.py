@@ -658,11 +658,11 @@ def sweep_cases(d: Path) -> list[Case]:
         return lambda: f"{p.name} was created by a rejected sweep" if p.exists() else None
 
     base = ["--mass-kg", "20,60", "--load-position-mm", "-120", "--snow-modulus-mpa", "100",
-            "--n-points", "256", "--workers", "0", "--profile-source", "beam"]  # fmt: skip
+            "--points", "256", "--workers", "0", "--profile-source", "beam"]  # fmt: skip
     for i, (opt, value) in enumerate((
         ("--ski", "skatte"), ("--mass-kg", "0"), ("--mass-kg", "nan"),
-        ("--snow-modulus-mpa", "nan"), ("--snow-modulus-mpa", "1e8"), ("--n-points", "3"),
-        ("--n-points", "1000000000"), ("--model", "fem"), ("--profile-source", "laser"),
+        ("--snow-modulus-mpa", "nan"), ("--snow-modulus-mpa", "1e8"), ("--points", "3"),
+        ("--points", "1000000000"), ("--model", "fem"), ("--profile-source", "laser"),
         ("--workers", "-1"), ("--load-position-mm", "5000"),
     )):  # fmt: skip
         out = d / f"sweep_bad_{i}.zarr"

@@ -27,7 +27,7 @@ from skisnow.sweep._store import done_chunks
 # 6 masses × 20 moduli = 20 chunks of 6 solves each
 ARGS = [
     "sweep", "--ski", "skate", "--mass-kg", "5:55:10", "--load-position-mm", "-120",
-    "--snow-modulus-mpa", "20:400:20", "--n-points", "512", "--profile-source", "beam",
+    "--snow-modulus-mpa", "20:400:20", "--points", "512", "--profile-source", "beam",
 ]  # fmt: skip
 CMD = [sys.executable, "-c", "from skisnow.cli import main; raise SystemExit(main())"]
 

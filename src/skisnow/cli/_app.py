@@ -137,9 +137,26 @@ def _exit_code_of(exc: BaseException) -> int:
     return EXIT_INTERNAL
 
 
+#: Old option names kept as hidden aliases (one name per concept across commands): old → new.
+DEPRECATED_OPTIONS: dict[str, str] = {"--n-points": "--points"}
+
+
+def _renamed(args: list[str]) -> list[str]:
+    """``args`` with deprecated option names replaced by the current ones (a note on stderr)."""
+    out = []
+    for a in args:
+        name, eq, value = a.partition("=")
+        if name in DEPRECATED_OPTIONS:
+            new = DEPRECATED_OPTIONS[name]
+            typer.echo(f"skisnow: note: {name} is now {new} (the old name still works)", err=True)
+            a = new + eq + value
+        out.append(a)
+    return out
+
+
 def main(argv: list[str] | None = None) -> int:
     """Run the CLI; return the exit code (see :data:`EXIT_CODES`; errors: one line on stderr)."""
-    args = sys.argv[1:] if argv is None else argv
+    args = _renamed(sys.argv[1:] if argv is None else argv)
     _state.update(debug="--debug" in args, converged=None, warnings=[], shown=set())
     from skisnow._checks import _ALLOW
     from skisnow._errors import DomainWarning

@@ -38,7 +38,10 @@ LoadPositionGridOption = Annotated[
 SnowModulusGridOption = Annotated[
     str, typer.Option("--snow-modulus-mpa", help="Snow moduli E_counter (MPa).")
 ]
-NPointsOption = Annotated[int, typer.Option("--n-points", help="Grid points along the ski.")]
+NPointsOption = Annotated[
+    int,
+    typer.Option("--points", help="Stations along the ski, tail to tip, both ends included."),
+]
 #: Dask options shared by the commands that sweep (sweep, report, explore); defaults per command.
 DaskWorkersOption = Annotated[
     int | None,

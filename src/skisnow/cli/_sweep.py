@@ -58,7 +58,7 @@ def sweep(
     from skisnow.sweep import SweepSpec, open_sweep, parse_values, run_sweep, save_netcdf
 
     # Every input is checked BEFORE anything is created: a typo never poisons --out.
-    check_grid_points(n_points, where="--n-points")
+    check_grid_points(n_points, where="--points")
     if workers is not None and workers < 0:
         raise InputError(f"--workers: need >= 0 (0: no Dask), got {workers}")
     from skisnow.ski import get_ski
