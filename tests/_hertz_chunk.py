@@ -45,6 +45,8 @@ def hertz_chunk(spec, ski: str, load_position: float, snow_modulus: float) -> di
     load = m * G
     share_front = (load_position - X_REAR) / (X_FRONT - X_REAR)
     shares = {"rear": 1 - share_front, "middle": 0.0, "front": share_front}
+    # the regions: the cylinders lie in the rear and front glide (outside any kick zone)
+    shares |= {"rear_glide": shares["rear"], "kick_zone": 0.0, "front_glide": shares["front"]}
     e_prime = effective(snow_modulus, spec)
     n_m, n_z = m.size, len(spec.zones)
     out = {
@@ -78,7 +80,7 @@ def hertz_chunk(spec, ski: str, load_position: float, snow_modulus: float) -> di
         out["breitschaedel_length_mm"][:, q] = 2 * np.sqrt(2 * R * 50e-6) * 1e3
     q = spec.zones.index("total")
     for name in ("length_mm", "area_cm2", "load_share", "patches", "breitschaedel_length_mm"):
-        out[name][:, q] = out[name][:, :q].sum(axis=1)
+        out[name][:, q] = out[name][:, :q].sum(axis=1)  # the paper's zones, before "total"
     out["mean_pressure_kpa"][:, q] = load / (out["area_cm2"][:, q] * 1e-4) / 1e3
     out["max_pressure_kpa"][:, q] = np.nanmax(out["max_pressure_kpa"][:, :q], axis=1)
     out["breitschaedel_area_cm2"] = out["breitschaedel_length_mm"] * W * 10

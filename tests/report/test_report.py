@@ -7,6 +7,7 @@ test stays fast; the metrics and the standard-load zones are the real ones.
 
 from __future__ import annotations
 
+import itertools
 import os
 import re
 import shutil
@@ -146,3 +147,61 @@ def test_report_links_an_explorer_beside_it_and_nothing_else() -> None:
     for bad in ("https://example.org/x.html", "/tmp/x.html", "../x.html", "file:x.html"):
         with pytest.raises(ValueError, match="only a file name"):
             Link(bad, "no")
+
+
+def test_report_progress_reaches_its_total(tmp_path: Path) -> None:
+    """The report's progress bar: the study reports every map chunk and every standard case."""
+    from skisnow.pipeline import study_ski
+
+    calls = []
+
+    def record(done: int, total: int, **_: object) -> None:
+        calls.append((done, total))
+
+    study_ski(SKI, store=tmp_path / "m.zarr", masses=(30.0, 60.0), map_moduli=(50e6, 200e6),
+              snows=(100e6,), n_points=512, progress=record)  # fmt: skip
+    assert calls and calls[-1][0] == calls[-1][1] == 2 + 4  # 2 map chunks, 2 loads × 2 models
+    assert all(b[0] >= a[0] for a, b in itertools.pairwise(calls))
+
+
+@pytest.mark.slow
+def test_report_reads_on_a_phone(report: Path) -> None:
+    """At 420 px: the page never scrolls sideways, tables scroll inside their box, and no text
+    in a figure shows smaller than 12 px (a figure too wide for the phone scrolls in its box)."""
+    import time
+
+    _need_chromium()
+    webdriver = pytest.importorskip("selenium.webdriver")
+    from selenium.webdriver.chrome.service import Service
+
+    opts = webdriver.ChromeOptions()
+    opts.binary_location = CHROMIUM
+    for arg in ("--headless=new", "--no-sandbox", "--disable-gpu", "--no-first-run"):
+        opts.add_argument(arg)
+    driver = webdriver.Chrome(service=Service(shutil.which("chromedriver")), options=opts)
+    try:
+        driver.execute_cdp_cmd("Emulation.setDeviceMetricsOverride",
+                               {"width": 420, "height": 900, "deviceScaleFactor": 1,
+                                "mobile": False})  # fmt: skip
+        driver.get(report.as_uri())
+        time.sleep(0.5)
+        page_width, figures, tables = driver.execute_script("""
+          const figs = [];
+          for (const svg of document.querySelectorAll('figure svg')) {
+            const r = svg.getBoundingClientRect(); if (r.width === 0) continue;
+            const scale = r.width / svg.viewBox.baseVal.width; let m = Infinity;
+            for (const t of svg.querySelectorAll('text')) {
+              const fs = parseFloat(getComputedStyle(t).fontSize);
+              if (fs > 0 && t.textContent.trim()) m = Math.min(m, fs * scale);
+            }
+            figs.push([r.width, m]);
+          }
+          const tabs = [...document.querySelectorAll('table')].map(
+            (t) => getComputedStyle(t.parentElement).overflowX);
+          return [document.documentElement.scrollWidth, figs, tabs];""")  # fmt: skip
+    finally:
+        driver.quit()
+    assert page_width <= 420
+    assert figures and all(m >= 11.95 for _, m in figures), figures
+    assert sum(w >= 380 for w, _ in figures) >= len(figures) // 2  # most figures full width
+    assert tables and set(tables) == {"auto"}

@@ -29,6 +29,7 @@ from skisnow.plot._style import (
     cmap_stops,
     figure_svg,
     save_figure,
+    smallest_text_pt,
 )
 from skisnow.plot._workflows import (
     animate_cycle,
@@ -58,6 +59,7 @@ __all__ = [
     "plot_snow_ranking",
     "plot_zone_map",
     "save_figure",
+    "smallest_text_pt",
     "sweep_figures",
     "topography_figure",
 ]

@@ -53,6 +53,11 @@ def plot_passport(
                 ax.axvline(edge * 1e3, color=COLORS["load"], linewidth=0.8, linestyle=":")
         ax.axvline(0.0, color="0.5", linewidth=0.6)
     ax_ei.set_yscale("log")
+    from matplotlib.ticker import FuncFormatter
+
+    # plain numbers (100, 1000), not 10² whose exponent would print at 70 % of the text size
+    ax_ei.yaxis.set_major_formatter(FuncFormatter(lambda v, _: f"{v:g}"))
+    ax_ei.yaxis.set_minor_formatter(FuncFormatter(lambda v, _: ""))
     ax_ei.set_ylabel("bending stiffness EI [N m²]")
     ax_ei.set_title(f"{ski.name} ({ski.kind} ski): passport")
     ax_ei.legend(loc="lower center", fontsize="small")

@@ -201,11 +201,40 @@ def save_figure(
     return paths
 
 
-def figure_svg(fig: Figure) -> str:
-    """The figure as an SVG document string (for inline embedding in HTML)."""
+#: Width [px] a figure takes on a phone (a 420 px wide screen less the page's margins).
+PHONE_FIGURE_PX: float = 390.0
+#: Smallest text [px] a figure may show.
+MIN_TEXT_PX: float = 12.0
+
+
+def figure_svg(fig: Figure, *, narrow: bool = False) -> str:
+    """The figure as an SVG document string (for inline embedding in HTML).
+
+    ``narrow``: the same figure redrawn for a phone (constrained layout, text at its size in
+    points), as wide as lets its smallest text show at :data:`MIN_TEXT_PX` on
+    :data:`PHONE_FIGURE_PX` (8 pt: 3.6 in) and taller by the room the text needs; ``""`` when
+    its panels do not fit that width (several side by side). The figure is left as it was.
+    """
+    import warnings
+
     buf = io.StringIO()
-    with style():
-        fig.savefig(buf, format="svg", metadata=_metadata("svg"))
+    size, engine = fig.get_size_inches().copy(), fig.get_layout_engine()
+    if narrow:
+        w, h = size
+        width = PHONE_FIGURE_PX * smallest_text_pt(fig) / (MIN_TEXT_PX * 72.0)
+        fig.set_size_inches(width, h * (1.0 + 0.6 * max(0.0, w / width - 1.0)))
+        fig.set_layout_engine("constrained")
+    try:
+        with style(), warnings.catch_warnings():
+            if narrow:
+                warnings.filterwarnings("error", message="constrained_layout not applied")
+            fig.savefig(buf, format="svg", metadata=_metadata("svg"))
+    except UserWarning:
+        return ""  # the panels collapse at this width: no phone drawing
+    finally:
+        if narrow:
+            fig.set_layout_engine(engine if engine is not None else "none")
+            fig.set_size_inches(*size)
     text = buf.getvalue()
     text = text[text.index("<svg") :]  # drop the XML prolog and DOCTYPE for inline use
     # drop the RDF metadata block (its namespace URLs are noise in an offline page)
@@ -213,6 +242,16 @@ def figure_svg(fig: Figure) -> str:
     if start >= 0 and end > start:
         text = text[:start] + text[end + len("</metadata>") :]
     return text
+
+
+def smallest_text_pt(fig: Figure) -> float:
+    """The smallest font size [pt] of the visible texts of a figure (ticks, labels, legends)."""
+    from matplotlib.text import Text
+
+    with style():
+        fig.draw_without_rendering()  # tick labels exist only once drawn
+    sizes = [t.get_fontsize() for t in fig.findobj(Text) if t.get_visible() and t.get_text()]
+    return float(min(sizes)) if sizes else float(RC["font.size"])
 
 
 def figure_png_base64(fig: Figure, *, dpi: float = 110) -> str:

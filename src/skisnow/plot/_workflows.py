@@ -75,9 +75,9 @@ def plot_snow_ranking(ranking: Any) -> Figure:
             ax.set_xscale("log")
             ax.minorticks_off()
             ax.set_xticks(e, [f"{v:g}" for v in e])
-            ax.set_xlabel("snow modulus E [MPa]")
+            ax.set_xlabel("snow modulus [MPa]")
         crit = ranking.criterion
-        ax_v.set_ylabel(crit.column)
+        ax_v.set_ylabel(crit.axis_label)
         ax_v.set_title(f"{crit.name}: {crit.better} is better")
         ax_r.set_ylabel("rank (1 = best)")
         ax_r.set_yticks(range(1, len(ranking.skis) + 1))

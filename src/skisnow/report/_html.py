@@ -9,6 +9,8 @@ from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
+import numpy as np
+
 CSS = """
 body { font-family: -apple-system, "Segoe UI", Helvetica, Arial, sans-serif; margin: 0;
        color: #1d2327; background: #fff; line-height: 1.45; }
@@ -25,9 +27,12 @@ figure { margin: 1em 0; }
 figure svg { width: 100%; max-width: 100%; height: auto; display: block; }
 .scroll { overflow-x: auto; max-width: 100%; -webkit-overflow-scrolling: touch; }
 .scroll table { margin: 0; }
+.fig-narrow { display: none; }
 @media (max-width: 600px) {
   header { padding: .8em 1em; } main { padding: .5em .8em 2em .8em; }
   figure { margin: 1em -.5em; }
+  .fig-wide { display: none; } .fig-narrow { display: block; }
+  .fig-scroll { overflow-x: auto; } .fig-scroll svg { min-width: var(--min-width); }
 }
 figcaption { font-size: .88em; color: #4a5560; margin-top: .3em; }
 .note { font-size: .88em; color: #4a5560; }
@@ -47,10 +52,25 @@ class Table:
 
 @dataclass(frozen=True)
 class Figure:
-    """An inline SVG figure with a caption."""
+    """An inline SVG figure with a caption; ``narrow``, the same figure drawn for a phone
+    screen (shown instead below 600 px, so that no text in it is smaller than 12 px)."""
 
     svg: str
     caption: str = ""
+    narrow: str = ""
+    min_width_px: int = 0
+
+    @classmethod
+    def of(cls, fig: Any, caption: str = "") -> Figure:
+        """Both drawings of a Matplotlib figure (:func:`skisnow.plot.figure_svg`); a figure
+        whose panels do not fit a phone's width scrolls there inside its box, drawn wide enough
+        for its smallest text to show at 12 px."""
+        from skisnow.plot import figure_svg, smallest_text_pt
+
+        narrow = figure_svg(fig, narrow=True)
+        wide_px = float(fig.get_size_inches()[0]) * 72.0  # the SVG's width in pt
+        min_px = 0 if narrow else int(np.ceil(12.0 * wide_px / smallest_text_pt(fig)))
+        return cls(figure_svg(fig), caption, narrow, min_px)
 
 
 @dataclass(frozen=True)
@@ -97,6 +117,12 @@ def _table(t: Table) -> str:
 
 def _figure(f: Figure) -> str:
     cap = f"<figcaption>{html.escape(f.caption)}</figcaption>" if f.caption else ""
+    if f.narrow:
+        return (f'<figure><div class="fig-wide">{f.svg}</div><div class="fig-narrow">'
+                f"{f.narrow}</div>{cap}</figure>")  # fmt: skip
+    if f.min_width_px:
+        return (f'<figure><div class="fig-scroll" style="--min-width: {f.min_width_px}px">'
+                f"{f.svg}</div>{cap}</figure>")  # fmt: skip
     return f"<figure>{f.svg}{cap}</figure>"
 
 

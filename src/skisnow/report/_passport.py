@@ -13,7 +13,7 @@ def passport_section(ski: Ski, *, step: float = 0.1) -> Section:
     """EI(x) and z0(x) every ``step`` [m] with their 95 % bands (identified skis), the figure,
     and the provenance."""
     from skisnow.bench import ski_passport
-    from skisnow.plot import figure_svg, plot_passport
+    from skisnow.plot import plot_passport
 
     pp = ski_passport(ski, step=step, metrics=False)
     t = pp.table()
@@ -34,6 +34,6 @@ def passport_section(ski: Ski, *, step: float = 0.1) -> Section:
         + (" Bands: 95 % (Gauss–Newton, bench noise only)." if pp.has_bands else ""),
         f"How it was made: {prov.method or 'not stated'}. Data: {prov.data or 'not stated'}.",
     )
-    figure = Figure(figure_svg(plot_passport(ski)), f"Passport of the {ski.name} ski.")
+    figure = Figure.of(plot_passport(ski), f"Passport of the {ski.name} ski.")
     return Section("The ski's passport: EI(x) and z0(x)", notes,
                    (Table(cols, rows, floatfmt=".4g"), figure))  # fmt: skip

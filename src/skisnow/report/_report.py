@@ -48,7 +48,8 @@ def _metrics_section(study: Any) -> Section:
         "The ski and its practitioner metrics",
         (
             f"Virtual bench of the ski '{s.name}' (beam model), skier body mass "
-            f"{study.body_mass:g} kg, load at x_m = {study.load_position * 1e3:g} mm. Half/full: "
+            f"{study.body_mass:g} kg, load at {study.load_position * 1e3:g} mm from the balance "
+            "point. Half/full: "
             "half and full body weight on the ski.",
         ),
         (info, Table(["metric", "value"], rows, floatfmt=".4g")),
@@ -150,7 +151,7 @@ def _rigid_vs_flexible(study: Any) -> Section | None:
 def _contact_figures(study: Any) -> list[Figure]:
     """Contact pictures (profile, pressure, deformed snow) at half and full body weight on the
     median snow of the table."""
-    from skisnow.plot import figure_svg, plot_contact
+    from skisnow.plot import plot_contact
 
     snows = sorted({c.snow_modulus for c in study.cases})
     e_pick = snows[(len(snows) - 1) // 2]
@@ -162,11 +163,10 @@ def _contact_figures(study: Any) -> list[Figure]:
         fig = plot_contact(
             case.solution,
             case.zones,
-            title=f"{case.label}: m = {m:g} kg, E_counter = {e / 1e6:g} MPa",
+            title=f"{case.label}: {m:g} kg at {case.load_position * 1e3:g} mm from the balance "
+            f"point, snow modulus {e / 1e6:g} MPa",
         )
-        figures.append(
-            Figure(figure_svg(fig), f"{case.label} ski, {m:g} kg, snow {e / 1e6:g} MPa.")
-        )
+        figures.append(Figure.of(fig, f"{case.label} ski, {m:g} kg, snow {e / 1e6:g} MPa."))
     return figures
 
 
@@ -182,20 +182,21 @@ _MAP_CAPTIONS = {
 
 
 def _maps_section(study: Any) -> Section:
-    from skisnow.plot import figure_svg, sweep_figures
+    from skisnow.plot import sweep_figures
 
     ds, ski = study.maps, study.ski.name
     positions = ds["load_position_mm"].values
     pos_mm = float(positions[np.argmin(np.abs(positions - study.load_position * 1e3))])
     figures = sweep_figures(ds, skis=[ski], load_positions_mm=[pos_mm], kinds=tuple(_MAP_CAPTIONS))
     items = [
-        Figure(figure_svg(fig), _MAP_CAPTIONS[kind])
+        Figure.of(fig, _MAP_CAPTIONS[kind])
         for kind, fig in zip(_MAP_CAPTIONS, figures.values(), strict=True)
     ]
     n_bad = int((~ds["converged"].sel(ski=ski).values).sum())
     note = (
         f"Sweep of {ds.sizes['mass_kg']} masses × {ds.sizes['snow_modulus_mpa']} snow moduli at "
-        f"x_m = {pos_mm:g} mm ({ds.attrs.get('profile_source', '?')} profiles, "
+        f"the load at {pos_mm:g} mm from the balance point ({ds.attrs.get('profile_source', '?')} "
+        "route, "
         f"{ds.attrs.get('ski_model', 'rigid')} ski); "
         f"{n_bad} points without a converged solution (drawn as gaps)."
     )

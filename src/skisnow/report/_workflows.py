@@ -16,7 +16,7 @@ __all__ = ["cycle_section", "fleet_section"]
 
 def cycle_section(ds: Any) -> Section:
     """The contact over a load cycle: the figure over time and when the grip wax touches."""
-    from skisnow.plot import figure_svg, plot_cycle
+    from skisnow.plot import plot_cycle
     from skisnow.workflows import kick_contact_summary
 
     s = kick_contact_summary(ds)
@@ -50,14 +50,14 @@ def cycle_section(ds: Any) -> Section:
     return Section(
         f"Contact over a cycle: {a['history']}",
         tuple(notes),
-        (table, Figure(figure_svg(plot_cycle(ds)), caption)),
+        (table, Figure.of(plot_cycle(ds), caption)),
     )
 
 
 def fleet_section(comparison: Any, *, criterion: str = "mean-pressure") -> Section:
     """The fleet side by side (metrics and contact at half and full body weight) and its
     ranking by ``criterion``."""
-    from skisnow.plot import figure_svg, plot_fleet
+    from skisnow.plot import plot_fleet
     from skisnow.workflows import CRITERIA
 
     records = comparison.records()
@@ -87,12 +87,13 @@ def fleet_section(comparison: Any, *, criterion: str = "mean-pressure") -> Secti
         floatfmt=".4g",
     )
     notes = (
-        f"Body mass {comparison.body_mass:g} kg at x_m = {comparison.load_position * 1e3:g} mm "
+        f"Body mass {comparison.body_mass:g} kg, load at {comparison.load_position * 1e3:g} mm "
+        "from the balance point "
         f"on {comparison.snow_modulus * 1e-6:g} MPa snow ({comparison.ski_model} ski). Ranking "
         f"criterion: {crit.description}.",
     )
-    figure = Figure(
-        figure_svg(plot_fleet(comparison)),
+    figure = Figure.of(
+        plot_fleet(comparison),
         "Loaded profiles and pressures of the fleet, full body weight solid, half dashed.",
     )
     return Section(

@@ -89,6 +89,12 @@ class Criterion:
     column: str
     better: Literal["lower", "higher"]
     snow_dependent: bool = True
+    label: str = ""
+
+    @property
+    def axis_label(self) -> str:
+        """The criterion in the field's words, with its unit (figures and tables)."""
+        return self.label or self.column
 
     def order(self, values: Sequence[float]) -> np.ndarray:
         """Indices from best to worst (NaN last; stable for ties).
@@ -111,6 +117,7 @@ CRITERIA: dict[str, Criterion] = {
             description="mean contact pressure of the whole footprint at full body weight; lower "
             "first (the ski floats: less compaction and ploughing on soft snow)",
             column="full_total_mean_pressure_kpa",
+            label="mean contact pressure at full body weight [kPa]",
             better="lower",
         ),
         Criterion(
@@ -118,6 +125,7 @@ CRITERIA: dict[str, Criterion] = {
             description="peak contact pressure at full body weight; lower first (no pressure "
             "spike at a glide-zone end that digs into soft snow)",
             column="full_total_peak_pressure_kpa",
+            label="peak contact pressure at full body weight [kPa]",
             better="lower",
         ),
         Criterion(
@@ -125,6 +133,7 @@ CRITERIA: dict[str, Criterion] = {
             description="total contact length at full body weight; shorter first (less base in "
             "contact: the practitioners' choice for hard, cold snow)",
             column="full_total_length_mm",
+            label="contact length at full body weight [mm]",
             better="lower",
         ),
         Criterion(
@@ -132,6 +141,7 @@ CRITERIA: dict[str, Criterion] = {
             description="share of the load carried between the kick-zone marks at full body "
             "weight; lower first (the grip wax stays off the snow while gliding)",
             column="full_kick_load_share",
+            label="load share of the kick zone at full body weight",
             better="lower",
         ),
         Criterion(
@@ -139,6 +149,7 @@ CRITERIA: dict[str, Criterion] = {
             description="share of the load on the rear glide zone at full body weight; higher "
             "first (the load stays behind the foot and the shovel runs light)",
             column="full_rear_load_share",
+            label="load share of the rear zone at full body weight",
             better="higher",
         ),
         Criterion(
@@ -146,6 +157,7 @@ CRITERIA: dict[str, Criterion] = {
             description="load that closes the wax pocket on the bench (from the beam); higher "
             "first (a stiffer pocket); does not depend on the snow",
             column="closing_load_kg",
+            label="load closing the wax pocket [kg]",
             better="higher",
             snow_dependent=False,
         ),
