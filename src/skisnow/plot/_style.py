@@ -219,10 +219,23 @@ def figure_svg(fig: Figure, *, narrow: bool = False) -> str:
 
     buf = io.StringIO()
     size, engine = fig.get_size_inches().copy(), fig.get_layout_engine()
+    legends = [(leg, leg._ncols) for ax in fig.axes if (leg := ax.get_legend()) is not None]
     if narrow:
         w, h = size
         width = PHONE_FIGURE_PX * smallest_text_pt(fig) / (MIN_TEXT_PX * 72.0)
         fig.set_size_inches(width, h * (1.0 + 0.6 * max(0.0, w / width - 1.0)))
+        moved = []
+        for ax in fig.axes:  # a legend under its axes: a figure legend under the figure
+            leg = ax.get_legend()
+            if leg is not None and leg.get_bbox_to_anchor().y0 < ax.bbox.y0:
+                leg.set_visible(False)
+                moved.append((leg, fig.legend(
+                    leg.legend_handles, [t.get_text() for t in leg.texts], ncols=1,
+                    loc="outside lower center", frameon=False,
+                    fontsize=leg.texts[0].get_fontsize() if leg.texts else None)))  # fmt: skip
+        for leg, _ in legends:  # a legend of several columns: one on a phone
+            leg.set_ncols(1)
+        titles = _wrap_titles(fig, width * 72.0)
         fig.set_layout_engine("constrained")
     try:
         with style(), warnings.catch_warnings():
@@ -235,6 +248,13 @@ def figure_svg(fig: Figure, *, narrow: bool = False) -> str:
         if narrow:
             fig.set_layout_engine(engine if engine is not None else "none")
             fig.set_size_inches(*size)
+            for leg, ncols in legends:
+                leg.set_ncols(ncols)
+            for t, text in titles:
+                t.set_text(text)
+            for leg, figure_legend in moved:
+                figure_legend.remove()
+                leg.set_visible(True)
     text = buf.getvalue()
     text = text[text.index("<svg") :]  # drop the XML prolog and DOCTYPE for inline use
     # drop the RDF metadata block (its namespace URLs are noise in an offline page)
@@ -242,6 +262,27 @@ def figure_svg(fig: Figure, *, narrow: bool = False) -> str:
     if start >= 0 and end > start:
         text = text[:start] + text[end + len("</metadata>") :]
     return text
+
+
+def _wrap_titles(fig: Figure, width_pt: float) -> list[tuple[Any, str]]:
+    """Wrap the titles of ``fig`` to lines that fit ``width_pt`` (a title wider than the figure
+    leaves constrained layout no room); returns (text, original) to restore."""
+    import textwrap
+
+    texts = [t for ax in fig.axes for t in (ax.title, ax._left_title, ax._right_title)]
+    if fig._suptitle is not None:
+        texts.append(fig._suptitle)
+    changed = []
+    for t in texts:
+        text = t.get_text()
+        if not text:
+            continue
+        chars = max(12, int(width_pt / (0.55 * t.get_fontsize())))
+        lines = [w for line in text.split("\n") for w in textwrap.wrap(line, chars) or [""]]
+        if len(lines) > text.count("\n") + 1:
+            changed.append((t, text))
+            t.set_text("\n".join(lines))
+    return changed
 
 
 def smallest_text_pt(fig: Figure) -> float:
