@@ -98,6 +98,10 @@ def explore(
                 "size_mb": size_mb,
                 "seconds": seconds,
                 "points": n_all,
+                "profile_route": {
+                    m: ("flexible" if m == "flexible" else source)
+                    for m in ds.attrs.get("ski_models", [])
+                },
                 # a map's corner whose load the ski cannot carry is not solved (shown greyed)
                 "points_converged": n_ok,
                 "converged": n_ok == n_all,
@@ -105,5 +109,6 @@ def explore(
         )
     else:
         err_console.print(
-            f"wrote {out} ({size_mb:.2f} MB, {n_all} points, {n_ok} converged, {seconds:.1f} s)"
+            f"wrote {out} ({size_mb:.2f} MB, {n_all} points, {n_ok} converged, {seconds:.1f} s, "
+            f"{source} route for the rigid ski)"
         )

@@ -119,6 +119,7 @@ def sweep(
         "store": str(out),
         "netcdf": None if exported is None else str(exported),
         "points": spec.n_points_total,
+        "profile_route": "flexible" if spec.ski_model == "flexible" else spec.profile_source,
         "chunks": n_chunks,
         "computed_chunks": len(run.computed),
         "skipped_chunks": len(run.skipped),
@@ -133,6 +134,7 @@ def sweep(
     rows = [
         ("store", str(out)),
         ("contact solves", spec.n_points_total),
+        ("profile route", doc["profile_route"]),
         ("chunks computed / already done", f"{len(run.computed)} / {len(run.skipped)}"),
         ("workers", run.workers),
         ("wall time [s]", f"{run.wall_time:.2f}"),
