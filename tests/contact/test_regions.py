@@ -112,3 +112,21 @@ def test_region_metrics_are_continuous_in_the_load(ski, position, modulus, ski_m
             dp = np.abs(pb - pa)[idx == k]
             assert abs(rb.max_pressure - ra.max_pressure) <= dp.max() + 1e-9
     assert len(merged) == 111
+
+
+def test_fields_file_names_each_stations_region_and_patch(tmp_path) -> None:
+    import pandas as pd
+
+    from skisnow.contact import read_fields, write_fields
+
+    c = solve_case("classic", mass=70.0, load_position=-0.120, snow_modulus=50e6,
+                   profile_source="beam", n_points=512)  # fmt: skip
+    path = write_fields(c.solution, tmp_path / "f.csv", c.zones)
+    table = pd.read_csv(path)
+    assert ((table["patch"] > 0) == (c.solution.pressure > 0)).all()
+    assert table["patch"].max() == len(c.zones.footprint.patches)
+    for region in c.zones.footprint.regions:
+        cells = ((table["region"] == region.name) & (table["patch"] > 0)).sum()
+        assert cells == region.cells
+    back = read_fields(path)  # the extra columns do not disturb the round trip
+    np.testing.assert_allclose(back["pressure"], c.solution.pressure, rtol=1e-9, atol=1e-6)

@@ -129,7 +129,8 @@ def contact(
     fields_out: Annotated[
         Path | None,
         typer.Option(
-            "--fields-out", help="Write x_mm,pressure_kpa,gap_um,snow_displacement_um (CSV)."
+            "--fields-out",
+            help="Write x_mm,pressure_kpa,gap_um,snow_displacement_um,region,patch (CSV).",
         ),
     ] = None,
 ) -> None:
@@ -209,7 +210,7 @@ def contact(
     report_converged(case.converged)
     report_domain_warnings(case.warnings[: len(case.warnings) - (not case.converged)], shown=True)
     if fields_out is not None:
-        write_fields(sol, fields_out)
+        write_fields(sol, fields_out, zones)
     if figure is not None:
         from skisnow.plot import plot_contact, save_figure
 

@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import io
 from pathlib import Path
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -111,12 +111,15 @@ def read_profile(path: str | Path, *, resample: bool = True) -> tuple[np.ndarray
     return x, h
 
 
-def fields_table(solution: ContactSolution) -> pd.DataFrame:
+def fields_table(solution: ContactSolution, zones: Any = None) -> pd.DataFrame:
     """The fields along the ski in field units.
 
     Strip/line: the values at each station. Surface: ``pressure_kpa`` is the width-averaged
     pressure q(x)/w(x) (so that Σ pressure·w·dx = W still holds), ``gap_um`` the smallest gap
-    across the width and ``snow_displacement_um`` the width-averaged displacement.
+    across the width and ``snow_displacement_um`` the width-averaged displacement. With
+    ``zones`` (:func:`skisnow.contact.contact_zones` of the solution) two more columns: the
+    ``region`` of each station (fixed by the ski) and its contact ``patch`` (1, 2, … tail to tip;
+    0 out of contact).
     """
     import pandas as pd
 
@@ -129,7 +132,7 @@ def fields_table(solution: ContactSolution) -> pd.DataFrame:
         u = np.where(fp, s.displacement, 0.0).sum(axis=1) / nfp
     else:
         p, gap, u = s.pressure, s.gap, s.displacement
-    return pd.DataFrame(
+    table = pd.DataFrame(
         {
             "x_mm": s.x * 1e3,
             "pressure_kpa": p * 1e-3,
@@ -137,14 +140,26 @@ def fields_table(solution: ContactSolution) -> pd.DataFrame:
             "snow_displacement_um": u * 1e6,
         }
     )
+    if zones is not None:
+        from skisnow.contact._regions import region_index
+
+        fp = zones.footprint
+        table["region"] = np.asarray(fp.names)[region_index(s.x, fp.marks)]
+        patch = np.zeros(s.x.size, dtype=int)
+        for k, pt in enumerate(fp.patches, start=1):
+            patch[(s.x > pt.start) & (s.x < pt.end)] = k
+        table["patch"] = patch
+    return table
 
 
-def write_fields(solution: ContactSolution, path: str | Path) -> Path:
-    """Write :func:`fields_table` as CSV (full float precision)."""
+def write_fields(solution: ContactSolution, path: str | Path, zones: Any = None) -> Path:
+    """Write :func:`fields_table` as CSV (full float precision; with ``zones``, the region and
+    the patch of each station)."""
     path = Path(path)
     from skisnow._atomic import atomic_write
 
-    return atomic_write(path, fields_table(solution).to_csv(index=False, float_format="%.10g"))
+    table = fields_table(solution, zones)
+    return atomic_write(path, table.to_csv(index=False, float_format="%.10g"))
 
 
 def read_fields(path: str | Path) -> dict[str, np.ndarray]:
