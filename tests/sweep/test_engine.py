@@ -58,7 +58,7 @@ def test_parse_values_field_units() -> None:
 def test_spec_validates_and_sorts() -> None:
     spec = _spec(masses=(30.0, 5.0, 60.0))
     assert spec.masses == (5.0, 30.0, 60.0)  # ascending: the warm-start path
-    assert spec.shape == (2, 3, 3, 3, 4)
+    assert spec.shape == (2, 3, 3, 3, 7)  # zones: rear, middle, front, total and 3 regions
     assert SweepSpec.from_json(spec.to_json()) == spec
     with pytest.raises(InputError, match="masses"):
         _spec(masses=(5.0, -1.0))
@@ -78,7 +78,7 @@ def test_in_process_sweep_places_every_chunk(tmp_path: Path) -> None:
         "mass_kg": 8,
         "load_position_mm": 3,
         "snow_modulus_mpa": 3,
-        "zone": 4,
+        "zone": 7,
     }
     assert ds.load_position_mm.values.tolist() == [-210.0, -120.0, -70.0]
     assert ds.snow_modulus_mpa.values.tolist() == [20.0, 100.0, 400.0]
