@@ -315,8 +315,10 @@ def contact_zones(
     Returns
     -------
     ZoneMetrics
-        ``rear``, ``middle``, ``front``, ``total``, ``kick`` (:class:`Zone`, SI units) and
-        ``breitschaedel`` (dict of the same four names; lengths and areas only).
+        ``rear``, ``middle``, ``front``, ``total``, ``kick`` (:class:`Zone`, SI units),
+        ``breitschaedel`` (dict of the same four names; lengths and areas only), ``merged``
+        (the zones are the regions), ``footprint`` (regions and patches,
+        :func:`skisnow.contact.footprint`) and ``regions`` (the regions as :class:`Zone`).
     """
     if kick_zone is not None:
         k0, k1 = (float(kick_zone[0]), float(kick_zone[1]))
