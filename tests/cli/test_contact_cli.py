@@ -47,7 +47,8 @@ def test_json_document_and_fields_balance(capsys, tmp_path: Path) -> None:
     assert shares == pytest.approx(1.0, rel=1e-12)
     # anyone can check the balance laws from the fields file (written with 10 digits)
     table = pd.read_csv(fields)
-    assert list(table.columns) == ["x_mm", "pressure_kpa", "gap_um", "snow_displacement_um"]
+    assert list(table.columns) == ["x_mm", "pressure_kpa", "gap_um", "snow_displacement_um",
+                                   "region", "patch"]  # fmt: skip
     x = table["x_mm"].to_numpy() * 1e-3
     p = table["pressure_kpa"].to_numpy() * 1e3
     dx = x[1] - x[0]
