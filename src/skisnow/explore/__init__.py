@@ -5,9 +5,10 @@ grid of mass × load position × snow modulus for one or more skis and keeps the
 ski; :func:`render_explorer` packs them (:mod:`._pack`) into ONE self-contained HTML file with a
 small inline script: sliders for mass, load position and snow modulus, a ski selector, the ski
 base and the deformed snow, the pressure with the zones shaded, the zone table and the Figure
-8/9-style maps with the current point marked. No server, no network, no CDN.
+8/9-style maps with the current point marked. No server, no network, no CDN. The page's zone
+palette and colour map come from :mod:`skisnow.plot`, embedded in its data (one palette).
 
-May import: sweep
+May import: sweep, plot
 """
 
 from skisnow.explore._data import ZONES, ExplorerGrid, explorer_dataset
