@@ -156,14 +156,24 @@ class RestrictedOperator:
     def build(
         cls, full: Convolution, cells: np.ndarray, *, dense: bool | None = None
     ) -> RestrictedOperator:
-        """``K_SS`` of ``full`` (1D, with a kernel) on the sorted flat ``cells``."""
+        """``K_SS`` of ``full`` (1D, with a kernel) on the sorted flat ``cells``: a dense matrix,
+        or the convolution over the span of the cells only (FFT of about twice the span, not
+        twice the grid; the restriction of a Toeplitz operator to a window is the same kernel)."""
         if full.ndim != 1 or full.kernel is None:
             raise InputError("a restricted operator needs a 1D operator with its kernel")
         cells = np.asarray(cells, dtype=np.intp)
         if dense is None:
             dense = cells.size <= cls.DENSE_MAX
-        matrix = _toeplitz_rows(full.kernel, full.shape[0], cells) if dense else None
-        return cls(full, cells, matrix)
+        (n,) = full.shape
+        if dense:
+            return cls(full, cells, _toeplitz_rows(full.kernel, n, cells))
+        first, span = int(cells[0]), int(cells[-1] - cells[0] + 1)
+        if span == n:
+            return cls(full, cells, None)
+        window = Convolution.from_kernel(
+            full.kernel[n - span : n - 1 + span], (span,), workers=full.workers
+        )
+        return cls(window, cells - first, None)
 
     @property
     def shape(self) -> tuple[int]:
@@ -195,11 +205,14 @@ class RestrictedOperator:
             out += v * k[self.cells - self.cells[j] + n - 1]  # type: ignore[index]
 
     def preconditioner(self, inverse: Convolution) -> RestrictedOperator:
-        """The full operator's circulant inverse ``inverse`` (:meth:`Convolution.inverse`),
-        restricted to the same cells (dense when this operator is)."""
+        """The circulant inverse (:meth:`Convolution.inverse`) restricted to the same cells:
+        ``inverse`` (the full grid's) when this operator is dense or acts on the full grid, else
+        the inverse of its window's convolution."""
         if self.matrix is not None:
             kinv = _inverse_kernel(self.full)
             return RestrictedOperator(
                 self.full, self.cells, _toeplitz_rows(kinv, self.full.shape[0], self.cells)
             )
+        if inverse.shape != self.full.shape:
+            inverse = self.full.inverse()
         return RestrictedOperator(inverse, self.cells, None)

@@ -42,11 +42,12 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from skisnow._errors import ConvergenceError, InputError, SolverStatus, UnsupportedLoadError
-from skisnow.contact._candidates import CANDIDATE_MIN_CELLS, solve_on_candidates
+from skisnow._parallel import single_threaded_blas
 from skisnow.contact._operators import CellOperator, circulant_preconditioner
 from skisnow.contact._polonsky_keer import PolonskyKeerResult, _dot, polonsky_keer
 from skisnow.contact._problem import ContactProblem, Control, Model, build_problem
 from skisnow.contact._starts import starting_pressure
+from skisnow.contact._strip import solve_strip
 
 __all__ = ["ContactSolution", "solve_contact"]
 
@@ -287,17 +288,23 @@ def solve_contact(
         control=control, width=width, y=y, n_across=n_across, translation=translation,
         rotation=rotation, reference_length=reference_length, workers=workers,
     )  # fmt: skip
-    p0 = starting_pressure(
-        problem,
-        initial_pressure=initial_pressure,
-        multilevel=model == "surface" if multilevel is None else multilevel,
-        tol=tol,
-        solve=solve_contact,  # the multilevel start's coarse solve: this function, recursively
-    )
     if candidates is None:
-        candidates = model != "surface" and problem.h.size >= CANDIDATE_MIN_CELLS
-    result = _iterate(problem, p0, tol=float(tol), max_iter=int(max_iter),
-                      precondition=precondition, candidates=candidates)  # fmt: skip
+        candidates = model != "surface"
+    if candidates and initial_pressure is None and multilevel is not False:
+        # 1D: the nested grids of :mod:`._strip` give the start
+        with single_threaded_blas():
+            result = solve_strip(problem, p0=None, tol=float(tol), max_iter=int(max_iter),
+                                 precondition=precondition)  # fmt: skip
+    else:
+        p0 = starting_pressure(
+            problem,
+            initial_pressure=initial_pressure,
+            multilevel=model == "surface" if multilevel is None else multilevel,
+            tol=tol,
+            solve=solve_contact,  # the multilevel start's coarse solve: this function, recursively
+        )
+        result = _iterate(problem, p0, tol=float(tol), max_iter=int(max_iter),
+                          precondition=precondition, candidates=candidates)  # fmt: skip
     sol = _solution(problem, result)
     if sol.converged and edge_contact == "error":
         _check_ends(sol)
@@ -323,20 +330,15 @@ def _iterate(
     pr = problem
     kwargs = dict(control=pr.control, total=pr.total, target=pr.target, tol=tol,
                   max_iter=max_iter)  # fmt: skip
-    result = None
     if candidates:
-        result = solve_on_candidates(
-            pr.conv, pr.h, pr.arm, p0=p0, precondition=precondition,
-            **kwargs,  # type: ignore[arg-type]
-        )  # fmt: skip
-    if result is None:  # the whole grid (also when the candidates are most of it)
-        inverse = CellOperator(circulant_preconditioner(pr.conv), pr.cells)
-        result = polonsky_keer(
-            pr.operator, pr.h, p0=p0, arm=pr.arm,
-            preconditioner=inverse if precondition else None,
-            **kwargs,  # type: ignore[arg-type]
-        )  # fmt: skip
-    return result
+        with single_threaded_blas():
+            return solve_strip(pr, p0=p0, tol=tol, max_iter=max_iter, precondition=precondition)
+    inverse = CellOperator(circulant_preconditioner(pr.conv), pr.cells)
+    return polonsky_keer(
+        pr.operator, pr.h, p0=p0, arm=pr.arm,
+        preconditioner=inverse if precondition else None,
+        **kwargs,  # type: ignore[arg-type]
+    )  # fmt: skip
 
 
 def _solution(problem: ContactProblem, result: PolonskyKeerResult) -> ContactSolution:
