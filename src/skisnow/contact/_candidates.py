@@ -91,11 +91,14 @@ def _dense_solve(
     from skisnow.contact import _pk_kernel as pk
 
     (n,) = conv.shape
-    if cells.size == n:
+    snow = getattr(conv, "snow", conv)  # a flexible ski's K_snow + K_beam: the snow's part
+    if cells.size == n and snow is conv:
         k, m = _whole_dense(conv)
     else:
-        k = _toeplitz_rows(conv.kernel, n, cells)  # type: ignore[arg-type]
-        m = _toeplitz_rows(_inverse_kernel(conv), n, cells) if precondition else k
+        k = _toeplitz_rows(snow.kernel, n, cells)
+        m = _toeplitz_rows(_inverse_kernel(snow), n, cells) if precondition else k
+        if snow is not conv:  # plus the beam's block (the preconditioner stays the snow's)
+            k += conv.beam.block(cells) * conv.cell_area
     code = {"moment": pk.MOMENT, "load": pk.LOAD, "displacement": pk.DISPLACEMENT}[control]
     p, u, it, n_conv, hist, status = pk.pk_dense(
         k, m, bool(precondition), hh, xi, np.ascontiguousarray(p0, dtype=np.float64), code,
@@ -134,7 +137,7 @@ def solve_cells(
     """Polonsky–Keer on the cells ``cells`` of a 1D grid (p = 0 elsewhere), restricted operator:
     dense and compiled up to :data:`DENSE_MAX` cells, FFT over their span beyond."""
     tg = None if target is None else target[cells]
-    if cells.size <= DENSE_MAX:
+    if cells.size <= DENSE_MAX or hasattr(conv, "snow"):
         hh = h[cells] if tg is None else h[cells] - tg
         return _dense_solve(conv, cells, hh, xi[cells], p0[cells], control=control, total=total,
                             tol=tol, max_iter=max_iter, precondition=precondition)  # fmt: skip
@@ -166,6 +169,12 @@ def solve_on_candidates(
     they are given the pressure that closes their own gap, and the iteration resumes. Returns
     the result on the whole grid (u too), or None when the candidates are most of a grid too
     large for the dense operator (then the caller iterates on the whole grid by FFT).
+
+    ``conv`` may also be the flexible ski's K_snow + K_beam
+    (:class:`~skisnow.contact._coupled_operator.CoupledOperator`): then the restricted operator
+    is always dense (the snow's Toeplitz block plus the beam's block), the preconditioner the
+    snow's, and None is returned where the candidates exceed :data:`DENSE_MAX` cells or the
+    iteration would have to finish on the whole grid.
     """
     n = h.size
     if margin is None:
@@ -201,12 +210,15 @@ def solve_on_candidates(
     candidates = (p > 0) | (g < margin * scale)
     iterations, history = 0, []
     small = n <= DENSE_MAX
+    coupled = hasattr(conv, "snow")
     kw = dict(control=control, total=total, target=target, precondition=precondition)
     for _ in range(8):
         _close_gaps(candidates, _CANDIDATE_GAP)
         cells = np.flatnonzero(candidates)
+        if coupled and cells.size > DENSE_MAX:
+            return None
         if cells.size == 0 or (cells.size > _CANDIDATE_FRACTION * n and not small):
-            if iterations == 0:
+            if iterations == 0 or coupled:
                 return None
             break
         if small:
@@ -224,7 +236,7 @@ def solve_on_candidates(
             u = conv(p)
             n_conv += 1
         if not res.converged:
-            return whole(res)
+            return None if coupled else whole(res)
         g = gap(p, u, res.translation, res.rotation)
         scale = float(np.max(np.abs(u))) + 1e-300
         # cells without pressure that penetrate (beyond the solver's tolerance): off the
@@ -247,6 +259,8 @@ def solve_on_candidates(
                 status = SolverStatus.INFEASIBLE
                 return whole(res, status=status, message=status.message, displacement=u)
     # the candidates grew to most of the grid (or kept missing cells): finish on the whole grid
+    if coupled:
+        return None
     inverse = circulant_preconditioner(conv) if precondition else None
     res = polonsky_keer(
         CellOperator(conv),

@@ -57,6 +57,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from skisnow._errors import ConvergenceError, InputError, UnsupportedLoadError
+from skisnow._parallel import single_threaded_blas
 from skisnow.contact._beam_operator import cantilever_compliance
 from skisnow.contact._coupled_operator import CoupledOperator, WinklerOperator
 from skisnow.contact._flexible_candidates import (
@@ -164,6 +165,7 @@ def _check_modulus(modulus: float, foundation: str) -> float:
     return value
 
 
+@single_threaded_blas()  # small dense Cholesky factors: one BLAS thread (see _parallel)
 def solve_flexible(
     x: ArrayLike,
     free_camber: ArrayLike,
