@@ -162,13 +162,16 @@ def test_candidates_with_displacement_control() -> None:
     np.testing.assert_allclose(b.pressure, a.pressure, rtol=0, atol=1e-6 * a.pressure.max())
 
 
-def test_candidates_are_for_1d_models_only() -> None:
-    x = cells(64, -1.0, 1.0)
-    with pytest.raises(InputError, match="1D models"):
-        solve_contact(
-            x, ski_like(x, 50.0), load=400.0, load_position=0.0, modulus=1e8,
-            model="surface", candidates=True,
-        )  # fmt: skip
+def test_surface_window_gives_the_whole_grid_solution() -> None:
+    # the surface model iterates on the window of its candidate cells (footprint of a ski's
+    # outline: only the cells inside it carry pressure), then checks the whole grid
+    x = cells(96, -1.0, 1.0)
+    kw = dict(load=400.0, load_position=-0.12, modulus=1e8, model="surface", n_across=8,
+              width=lambda xx: 0.04 + 0.01 * xx**2, tol=1e-12)  # fmt: skip
+    a = solve_contact(x, ski_like(x, 50.0), candidates=False, **kw)
+    b = solve_contact(x, ski_like(x, 50.0), **kw)
+    assert a.contact.any(axis=1).mean() < 0.5  # a window smaller than the grid
+    np.testing.assert_allclose(b.pressure, a.pressure, rtol=0, atol=1e-9 * a.pressure.max())
 
 
 def test_line_operator_restriction() -> None:

@@ -208,9 +208,17 @@ class Convolution:
 
     @classmethod
     def from_kernel(
-        cls, kernel: np.ndarray, shape: tuple[int, ...] | int, *, workers: int | None = None
+        cls,
+        kernel: np.ndarray,
+        shape: tuple[int, ...] | int,
+        *,
+        workers: int | None = None,
+        even: bool | None = None,
     ) -> Convolution:
-        """Precompute the spectrum of a kernel given at offsets ``-(n-1) .. n-1`` per axis."""
+        """Precompute the spectrum of a kernel given at offsets ``-(n-1) .. n-1`` per axis.
+
+        ``even``: whether the kernel is even on every axis (its spectrum then real); checked
+        when not given (a window of an even kernel, centred, is even)."""
         shape = (int(shape),) if np.isscalar(shape) else tuple(int(s) for s in shape)
         kernel = np.asarray(kernel, dtype=np.float64)
         expected = tuple(2 * n - 1 for n in shape)
@@ -233,7 +241,8 @@ class Convolution:
         workers = default_workers() if workers is None else max(1, int(workers))
         real_axis = _real_axis(shape)
         spectrum = _forward(embedded, fft_shape, real_axis, workers)
-        even = all(np.allclose(kernel, np.flip(kernel, axis=a)) for a in range(kernel.ndim))
+        if even is None:
+            even = all(np.allclose(kernel, np.flip(kernel, axis=a)) for a in range(kernel.ndim))
         if even:
             spectrum = np.ascontiguousarray(spectrum.real)
         return cls(

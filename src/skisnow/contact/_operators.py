@@ -171,8 +171,9 @@ class RestrictedOperator:
         if span == n:
             return cls(full, cells, None)
         window = Convolution.from_kernel(
-            full.kernel[n - span : n - 1 + span], (span,), workers=full.workers
-        )
+            full.kernel[n - span : n - 1 + span], (span,), workers=full.workers,
+            even=not np.iscomplexobj(full.spectrum),
+        )  # fmt: skip
         return cls(window, cells - first, None)
 
     @property

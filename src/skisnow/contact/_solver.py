@@ -48,6 +48,7 @@ from skisnow.contact._polonsky_keer import PolonskyKeerResult, _dot, polonsky_ke
 from skisnow.contact._problem import ContactProblem, Control, Model, build_problem
 from skisnow.contact._starts import starting_pressure
 from skisnow.contact._strip import solve_strip
+from skisnow.contact._window import solve_on_window
 
 __all__ = ["ContactSolution", "solve_contact"]
 
@@ -281,16 +282,14 @@ def solve_contact(
     """
     if edge_contact not in ("error", "allow"):
         raise InputError(f"edge_contact must be 'error' or 'allow', got {edge_contact!r}")
-    if candidates and model == "surface":
-        raise InputError("candidates=True is offered for the 1D models (strip, line) only")
     problem = build_problem(
         x, height, load=load, load_position=load_position, modulus=modulus, model=model,
         control=control, width=width, y=y, n_across=n_across, translation=translation,
         rotation=rotation, reference_length=reference_length, workers=workers,
     )  # fmt: skip
     if candidates is None:
-        candidates = model != "surface"
-    if candidates and initial_pressure is None and multilevel is not False:
+        candidates = True
+    if candidates and model != "surface" and initial_pressure is None and multilevel is not False:
         # 1D: the nested grids of :mod:`._strip` give the start
         with single_threaded_blas():
             result = solve_strip(problem, p0=None, tol=float(tol), max_iter=int(max_iter),
@@ -330,7 +329,11 @@ def _iterate(
     pr = problem
     kwargs = dict(control=pr.control, total=pr.total, target=pr.target, tol=tol,
                   max_iter=max_iter)  # fmt: skip
-    if candidates:
+    if candidates and pr.model == "surface":
+        result = solve_on_window(pr, p0, tol=tol, max_iter=max_iter, precondition=precondition)
+        if result is not None:
+            return result
+    elif candidates:
         with single_threaded_blas():
             return solve_strip(pr, p0=p0, tol=tol, max_iter=max_iter, precondition=precondition)
     inverse = CellOperator(circulant_preconditioner(pr.conv), pr.cells)
