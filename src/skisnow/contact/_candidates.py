@@ -40,7 +40,7 @@ __all__ = ["CANDIDATE_MIN_CELLS", "DENSE_MAX", "solve_on_candidates"]
 #: candidate cells: those whose estimated gap is below this fraction of the largest snow
 #: displacement (plus the cells already in contact); the gap check after the solve adds any
 #: cell that was missed, so the margin only trades set size against re-solves
-_CANDIDATE_MARGIN = 0.05
+_CANDIDATE_MARGIN = 0.02
 #: the candidate iteration is used when the set is at most this fraction of the grid
 _CANDIDATE_FRACTION = 0.8
 #: candidate runs closer than this many cells are joined
@@ -70,8 +70,11 @@ def _whole_dense(conv: Convolution) -> tuple[np.ndarray, np.ndarray]:
     cells = np.arange(n)
     return (
         _toeplitz_rows(conv.kernel, n, cells),  # type: ignore[arg-type]
-        _toeplitz_rows(_inverse_kernel(conv), n, cells),
+        _toeplitz_rows(_inverse_kernel(conv), n, cells, dtype=np.float32),
     )
+
+
+_NO_PRECONDITIONER = np.zeros((0, 0), dtype=np.float32)
 
 
 def _dense_solve(
@@ -96,7 +99,9 @@ def _dense_solve(
         k, m = _whole_dense(conv)
     else:
         k = _toeplitz_rows(snow.kernel, n, cells)
-        m = _toeplitz_rows(_inverse_kernel(snow), n, cells) if precondition else k
+        m = _NO_PRECONDITIONER
+        if precondition:
+            m = _toeplitz_rows(_inverse_kernel(snow), n, cells, dtype=np.float32)
         if snow is not conv:  # plus the beam's block (the preconditioner stays the snow's)
             k += conv.beam.block(cells) * conv.cell_area
     code = {"moment": pk.MOMENT, "load": pk.LOAD, "displacement": pk.DISPLACEMENT}[control]
@@ -221,8 +226,6 @@ def solve_on_candidates(
             if iterations == 0 or coupled:
                 return None
             break
-        if small:
-            cells = np.arange(n)
         res = solve_cells(conv, cells, h, xi, p, tol=tol, max_iter=max_iter - iterations,
                           **kw)  # type: ignore[arg-type]  # fmt: skip
         iterations += res.iterations
@@ -230,7 +233,7 @@ def solve_on_candidates(
         n_conv += res.convolutions
         p = np.zeros(n)
         p[cells] = res.pressure
-        if small:
+        if cells.size == n:
             u = res.displacement
         else:
             u = conv(p)

@@ -141,7 +141,7 @@ def _first_set(
     n = h.size
     cells = np.arange(n)
     k = _toeplitz_rows(snow.kernel, n, cells) + op.beam.block(cells) * op.cell_area
-    m = _toeplitz_rows(_inverse_kernel(snow), n, cells)
+    m = _toeplitz_rows(_inverse_kernel(snow), n, cells, dtype=np.float32)
     p, *_, status = pk.pk_dense(k, m, True, h, xi, p0, pk.MOMENT, float(total), _FIRST_TOL,
                                 _FIRST_STEPS, snow.self_influence)  # fmt: skip
     if status in (pk.SUCCESSFUL, pk.MAX_STEPS, pk.EXACT) and (p > 0).sum() >= 2:

@@ -98,12 +98,14 @@ def circulant_preconditioner(conv: Convolution) -> Convolution:
 # the operator restricted to a set of cells (the candidate contact cells of a 1D problem)
 
 
-def _toeplitz_rows(kernel: np.ndarray, n: int, cells: np.ndarray) -> np.ndarray:
+def _toeplitz_rows(
+    kernel: np.ndarray, n: int, cells: np.ndarray, dtype: type = np.float64
+) -> np.ndarray:
     """The dense matrix ``M[i, j] = kernel[cells[i] − cells[j] + n − 1]`` (kernel over offsets
     −(n−1)..n−1), assembled run by run: the whole n × n Toeplitz matrix is a strided view of the
     kernel, and each pair of contiguous runs of ``cells`` is a block of it, so building costs a
     copy of the entries, not a gather."""
-    kernel = np.ascontiguousarray(kernel, dtype=np.float64)
+    kernel = np.ascontiguousarray(kernel, dtype=dtype)
     step = kernel.strides[0]
     # full[i, j] = kernel[n − 1 + i − j]
     full = np.lib.stride_tricks.as_strided(
@@ -113,7 +115,7 @@ def _toeplitz_rows(kernel: np.ndarray, n: int, cells: np.ndarray) -> np.ndarray:
     starts = np.concatenate([[0], breaks]).tolist()
     stops = np.concatenate([breaks, [cells.size]]).tolist()
     first = cells[starts].tolist()
-    out = np.empty((cells.size, cells.size))
+    out = np.empty((cells.size, cells.size), dtype=dtype)
     for r0, r1, a0 in zip(starts, stops, first, strict=True):
         for c0, c1, b0 in zip(starts, stops, first, strict=True):
             out[r0:r1, c0:c1] = full[a0 : a0 + r1 - r0, b0 : b0 + c1 - c0]
