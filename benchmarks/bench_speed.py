@@ -72,16 +72,16 @@ def ski_case(n: int, name: str = "classic", mass: float = 60.0, xm: float = -0.1
 
     ski = get_ski(name)
     edges = np.linspace(ski.x_tail, ski.x_tip, n + 1)
-    return camber_profile(name, mass=mass, load_position=xm, x=0.5 * (edges[1:] + edges[:-1]),
-                          source="beam")  # fmt: skip
+    return camber_profile(
+        name, mass=mass, load_position=xm, x=0.5 * (edges[1:] + edges[:-1]), source="beam"
+    )
 
 
 def strip_kw(mass: float = 60.0, xm: float = -0.12, e: float = 100e6) -> dict:
     from skisnow.constants import STANDARD_GRAVITY
     from skisnow.contact import effective_modulus, snow
 
-    return dict(load=mass * STANDARD_GRAVITY, load_position=xm,
-                modulus=effective_modulus(snow(e)))  # fmt: skip
+    return dict(load=mass * STANDARD_GRAVITY, load_position=xm, modulus=effective_modulus(snow(e)))
 
 
 def row_strip(repeat: int) -> None:
@@ -91,15 +91,22 @@ def row_strip(repeat: int) -> None:
     x, h = ski_case(4096)
     t = {}
     for control in ("moment", "load"):
-        wall, cpu, sol = medians(lambda c=control: solve_contact(x, h, control=c, **strip_kw()),
-                                 repeat)  # fmt: skip
+        wall, cpu, sol = medians(
+            lambda c=control: solve_contact(x, h, control=c, **strip_kw()), repeat
+        )
         t[control] = (wall, cpu)
-        print(f"    strip 4096 {control}: wall {wall * 1e3:.2f} ms, CPU {cpu * 1e3:.2f} ms, "
-              f"{sol.iterations} iterations, {sol.convolutions} products, "
-              f"{int(sol.contact.sum())} cells in contact")  # fmt: skip
+        print(
+            f"    strip 4096 {control}: wall {wall * 1e3:.2f} ms, CPU {cpu * 1e3:.2f} ms, "
+            f"{sol.iterations} iterations, {sol.convolutions} products, "
+            f"{int(sol.contact.sum())} cells in contact"
+        )
     (wm, cm), (wl, cl) = t["moment"], t["load"]
-    record("strip solve 4096, moment", f"{wm * 1e3:.2f} ms wall, {cm * 1e3:.2f} ms CPU (median "
-           f"of {repeat})", "<= 2 ms", before)  # fmt: skip
+    record(
+        "strip solve 4096, moment",
+        f"{wm * 1e3:.2f} ms wall, {cm * 1e3:.2f} ms CPU (median of {repeat})",
+        "<= 2 ms",
+        before,
+    )
     record("moment / load", f"{wm / wl:.2f} wall, {cm / cl:.2f} CPU", "<= 1.2", before)
 
 
@@ -107,8 +114,10 @@ def row_scaling(repeat: int) -> None:
     from skisnow.contact import solve_contact
 
     before = load()
-    print(f"    {'stations':>8} {'CPU ms':>8} {'wall ms':>8} {'iter':>5} {'products':>8} "
-          f"{'contact':>7} {'peak MB':>8}")  # fmt: skip
+    print(
+        f"    {'stations':>8} {'CPU ms':>8} {'wall ms':>8} {'iter':>5} {'products':>8} "
+        f"{'contact':>7} {'peak MB':>8}"
+    )
     prev = None
     for n in (1024, 2048, 4096, 8192, 16384, 32768, 65536):
         x, h = ski_case(n)
@@ -120,8 +129,10 @@ def row_scaling(repeat: int) -> None:
         tracemalloc.stop()
         growth = f"  x{cpu / prev:.2f}" if prev else ""
         prev = cpu
-        print(f"    {n:8d} {cpu * 1e3:8.2f} {wall * 1e3:8.2f} {sol.iterations:5d} "
-              f"{sol.convolutions:8d} {int(sol.contact.sum()):7d} {peak:8.2f}{growth}")  # fmt: skip
+        print(
+            f"    {n:8d} {cpu * 1e3:8.2f} {wall * 1e3:8.2f} {sol.iterations:5d} "
+            f"{sol.convolutions:8d} {int(sol.contact.sum()):7d} {peak:8.2f}{growth}"
+        )
     record("scaling 1,024 -> 65,536 stations", "table above", "growth law", before)
 
 
@@ -144,8 +155,9 @@ def _skisnow_hertz(n: int, tol: float):
     x, h, w, e, _, exact = _hertz(n)
     _problem._operator.cache_clear()  # cold: the kernel and its spectrum in the timing
     t0, c0 = time.perf_counter(), time.process_time()
-    sol = solve_contact(x, h, y=x, load=w, modulus=e, model="surface", control="load", tol=tol,
-                        workers=1)  # fmt: skip
+    sol = solve_contact(
+        x, h, y=x, load=w, modulus=e, model="surface", control="load", tol=tol, workers=1
+    )
     t, c = time.perf_counter() - t0, time.process_time() - c0
     return t, c, np.linalg.norm(sol.pressure - exact) / np.linalg.norm(exact), sol.pressure
 
@@ -158,8 +170,9 @@ def _tamaas_hertz(n: int, tol: float):
     model.E, model.nu = e / 2, 0.0  # E* = E/(1 − ν²) = E'/2
     tm.ModelFactory.registerNonPeriodic(model, "non_periodic")
     surface = np.ascontiguousarray(-(h - h.min()))
-    solver = tm.PolonskyKeerRey(model, surface, tol, tm.PolonskyKeerRey.pressure,
-                                tm.PolonskyKeerRey.pressure)  # fmt: skip
+    solver = tm.PolonskyKeerRey(
+        model, surface, tol, tm.PolonskyKeerRey.pressure, tm.PolonskyKeerRey.pressure
+    )
     solver.setIntegralOperator("non_periodic")
     solver.max_iter = 10000
     solver.dump_freq = 10**9
@@ -198,22 +211,37 @@ def row_hertz(sizes: list[int]) -> None:
         if peer:
             tt, tc, terr, tp = _tamaas_hertz(n, 1e-10)
             rel = np.linalg.norm(p - tp) / np.linalg.norm(tp)
-            msg += (f"; tamaas {tt:.2f} s wall, {tc:.2f} s CPU, rel-L2 vs Hertz {terr:.2e}; "
-                    f"skisnow vs tamaas {rel:.1e}; speed-up {tt / t:.1f}x wall, {tc / c:.1f}x CPU")  # fmt: skip
-        record(f"Hertz {n}² non-periodic, tol 1e-10", msg,
-               f"<= {targets.get(n, float('nan'))} s, >= 25x tamaas", before)  # fmt: skip
+            msg += (
+                f"; tamaas {tt:.2f} s wall, {tc:.2f} s CPU, rel-L2 vs Hertz {terr:.2e}; "
+                f"skisnow vs tamaas {rel:.1e}; speed-up {tt / t:.1f}x wall, {tc / c:.1f}x CPU"
+            )
+        record(
+            f"Hertz {n}² non-periodic, tol 1e-10",
+            msg,
+            f"<= {targets.get(n, float('nan'))} s, >= 25x tamaas",
+            before,
+        )
         if peer:
             before = load()
             st, sw, sc, se = _equal_accuracy(_skisnow_hertz, n)
             tt, tw, tc, te = _equal_accuracy(_tamaas_hertz, n)
-            record(f"Hertz {n}² at equal accuracy",
-                   f"skisnow tol {st:g}: {sw:.2f} s (err {se:.3e}); tamaas tol {tt:g}: {tw:.2f} s "
-                   f"(err {te:.3e}); speed-up {tw / sw:.1f}x wall, {tc / sc:.1f}x CPU",
-                   ">= 25x tamaas", before)  # fmt: skip
+            record(
+                f"Hertz {n}² at equal accuracy",
+                f"skisnow tol {st:g}: {sw:.2f} s (err {se:.3e}); tamaas tol {tt:g}: {tw:.2f} s "
+                f"(err {te:.3e}); speed-up {tw / sw:.1f}x wall, {tc / sc:.1f}x CPU",
+                ">= 25x tamaas",
+                before,
+            )
 
 
-FLEX_CASES = (("classic", 60, -70, 20), ("classic", 60, -70, 100), ("classic", 60, -70, 400),
-              ("classic", 30, -120, None), ("skate", 60, -120, 20), ("skate", 30, -120, 100))  # fmt: skip
+FLEX_CASES = (
+    ("classic", 60, -70, 20),
+    ("classic", 60, -70, 100),
+    ("classic", 60, -70, 400),
+    ("classic", 30, -120, None),
+    ("skate", 60, -120, 20),
+    ("skate", 30, -120, 100),
+)
 
 
 def row_flexible(repeat: int) -> None:
@@ -233,11 +261,14 @@ def row_flexible(repeat: int) -> None:
         kw = dict(load=m * STANDARD_GRAVITY, load_position=xm, modulus=e, width=ski.width)
         z0, ei = ski.free_camber(x), ski.stiffness(x)
         wr, cr, _ = medians(lambda x=x, h=h, kw=kw: solve_contact(x, h, **kw), repeat)
-        wf, cf, _ = medians(lambda x=x, z0=z0, ei=ei, kw=kw: solve_flexible(x, z0, ei, **kw),
-                            repeat)  # fmt: skip
+        wf, cf, _ = medians(
+            lambda x=x, z0=z0, ei=ei, kw=kw: solve_flexible(x, z0, ei, **kw), repeat
+        )
         worst = max(worst, cf / cr)
-        print(f"    {name} {m} kg {xm_mm} mm {e_mpa or 'stone'}: rigid {cr * 1e3:.2f} ms CPU, "
-              f"flexible {cf * 1e3:.2f} ms CPU, ratio {cf / cr:.2f} (wall {wf / wr:.2f})")  # fmt: skip
+        print(
+            f"    {name} {m} kg {xm_mm} mm {e_mpa or 'stone'}: rigid {cr * 1e3:.2f} ms CPU, "
+            f"flexible {cf * 1e3:.2f} ms CPU, ratio {cf / cr:.2f} (wall {wf / wr:.2f})"
+        )
     record("flexible / bare rigid (CPU, worst of 6)", f"{worst:.2f}", "<= 1.5", before)
 
 
@@ -250,9 +281,15 @@ def row_sweep() -> None:
     from skisnow.sweep import SweepSpec, run_sweep
     from skisnow.sweep._run import local_cluster
 
-    spec = SweepSpec(skis=("skate",), masses=np.arange(5.0, 131.0, 1.0), load_positions=(-0.120,),
-                     snow_moduli=np.arange(20.0, 401.0, 20.0) * 1e6, model="strip",
-                     profile_source="beam", n_points=4096)  # fmt: skip
+    spec = SweepSpec(
+        skis=("skate",),
+        masses=np.arange(5.0, 131.0, 1.0),
+        load_positions=(-0.120,),
+        snow_moduli=np.arange(20.0, 401.0, 20.0) * 1e6,
+        model="strip",
+        profile_source="beam",
+        n_points=4096,
+    )
     before = load()
     times = {}
     with tempfile.TemporaryDirectory() as tmp:
@@ -263,9 +300,15 @@ def row_sweep() -> None:
             client.close()
             cluster.close()
             times[n] = run.compute_time
-            print(f"    {n} worker(s): compute {run.compute_time:.2f} s, wall {run.wall_time:.2f} s")
-    record("Figure 8/9 sweep, 2520 solves", f"{times[2]:.2f} s on 2 workers, {times[1]:.2f} s on "
-           f"1 ({times[1] / times[2]:.2f}x)", "< 2 s on 2, >= 1.8x", before)  # fmt: skip
+            print(
+                f"    {n} worker(s): compute {run.compute_time:.2f} s, wall {run.wall_time:.2f} s"
+            )
+    record(
+        "Figure 8/9 sweep, 2520 solves",
+        f"{times[2]:.2f} s on 2 workers, {times[1]:.2f} s on 1 ({times[1] / times[2]:.2f}x)",
+        "< 2 s on 2, >= 1.8x",
+        before,
+    )
 
 
 def row_explore() -> None:
@@ -279,8 +322,12 @@ def row_explore() -> None:
     t1 = time.perf_counter()
     render_explorer(ds)
     t2, c2 = time.perf_counter(), time.process_time()
-    record("explorer default page (3,120 solves)", f"{t2 - t0:.1f} s wall ({t1 - t0:.1f} s "
-           f"solves), {c2 - c0:.1f} s CPU of this process", "< 8 s", before)  # fmt: skip
+    record(
+        "explorer default page (3,120 solves)",
+        f"{t2 - t0:.1f} s wall ({t1 - t0:.1f} s solves), {c2 - c0:.1f} s CPU of this process",
+        "< 8 s",
+        before,
+    )
 
 
 def row_cycle(repeat: int) -> None:
@@ -306,8 +353,9 @@ def row_cycle(repeat: int) -> None:
             worst_flex = max(worst_flex, wall)
         print(f"    {ski} {name} {model} ({ds.attrs['route']}): {wall:.3f} s wall, {cpu:.3f} s CPU")
     record("100-frame cycle (slowest rigid)", f"{worst:.3f} s wall", "< 0.3 s", before)
-    record("100-frame cycle (slowest flexible)", f"{worst_flex:.3f} s wall", "(not a target)",
-           before)  # fmt: skip
+    record(
+        "100-frame cycle (slowest flexible)", f"{worst_flex:.3f} s wall", "(not a target)", before
+    )
 
 
 def row_bearing() -> None:
@@ -318,11 +366,21 @@ def row_bearing() -> None:
     bearing_area(topo, diameter=600e-6, pressure=20e3, hardness=hard, stride=8)  # compile
     before = load()
     t0, c0 = time.perf_counter(), time.process_time()
-    sweep = bearing_sweep(topo, diameters=np.arange(450, 751, 10) * 1e-6, pressure=20e3,
-                          hardness=hard, stride=1, workers=2)  # fmt: skip
+    sweep = bearing_sweep(
+        topo,
+        diameters=np.arange(450, 751, 10) * 1e-6,
+        pressure=20e3,
+        hardness=hard,
+        stride=1,
+        workers=2,
+    )
     t, c = time.perf_counter() - t0, time.process_time() - c0
-    record("bearing model stride 1 (31 sizes, 2 threads)", f"{t:.1f} s wall, {c:.1f} s CPU, "
-           f"{int(sweep.n_positions.sum())} pairs", "< 8 s wall, CPU <= 13.8 s", before)  # fmt: skip
+    record(
+        "bearing model stride 1 (31 sizes, 2 threads)",
+        f"{t:.1f} s wall, {c:.1f} s CPU, {int(sweep.n_positions.sum())} pairs",
+        "< 8 s wall, CPU <= 13.8 s",
+        before,
+    )
 
 
 def main() -> None:
@@ -337,8 +395,10 @@ def main() -> None:
         ap.error(f"unknown rows {unknown}; valid: {', '.join(ROWS)}")
     import skisnow
 
-    print(f"skisnow {skisnow.__version__} at {os.path.dirname(skisnow.__file__)}; "
-          f"{os.cpu_count()} CPUs; load average {load()}")  # fmt: skip
+    print(
+        f"skisnow {skisnow.__version__} at {os.path.dirname(skisnow.__file__)}; "
+        f"{os.cpu_count()} CPUs; load average {load()}"
+    )
     for row in rows:
         print(f"\n[{row}]", flush=True)
         if row == "strip":
