@@ -80,7 +80,8 @@ def _fit(v, m, xm_, cnt, sx, sxx, moment):
 @numba.njit(cache=True, nogil=True)
 def pk_dense(k, m_inv, use_inv, hh, xi, p0, control, total, tol, max_iter, k0):
     """Polonsky–Keer on a dense operator ``k`` (n × n, float64) with preconditioner ``m_inv``
-    (float32, used when ``use_inv``); ``hh`` = h − target. Returns (p, u, iterations, products, history, status)."""
+    (float32, used when ``use_inv``); ``hh`` = h − target. Returns (p, u, iterations,
+    products, history, status)."""
     n = hh.size
     moment = control == MOMENT
     constrained = control != DISPLACEMENT

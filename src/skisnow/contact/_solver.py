@@ -26,8 +26,16 @@ pipeline over modules of one concern each:
 3. :mod:`._polonsky_keer` — the Polonsky & Keer (1999) constrained conjugate gradient,
    generalised to the moment constraint and preconditioned (Vollebregt 2014), returning a
    frozen result with a :class:`~skisnow.SolverStatus`;
-4. :mod:`._candidates` — on 1D grids the same iteration on the *candidate* cells only, with the
-   gap checked on the whole grid afterwards (the cost changes, not the answer);
+4. the operator restricted to where contact can be (the cost changes, not the answer: the gap
+   is checked on the whole grid afterwards and any missed cell added):
+
+   * :mod:`._strip` — 1D grids: the same problem on grids coarsened by 4 (down to ≤ 256 cells)
+     gives the start, then :mod:`._candidates` iterates on the *candidate* cells only, with
+     ``K_SS`` dense and the loop compiled (:mod:`._pk_kernel`) up to 800 cells, by FFT over
+     the candidates' span beyond;
+   * :mod:`._window` — the surface model: the iteration on the bounding box of the candidate
+     cells, the same kernel on a smaller FFT grid;
+
 5. here — the result back on the grid (:class:`ContactSolution`), the balance residuals, the
    end-station check and ``raise_on_failure``.
 """
@@ -252,14 +260,19 @@ def solve_contact(
     multilevel
         Without ``initial_pressure``, start from the solution on a grid twice as coarse
         (recursively, down to 128² cells): fewer fine-grid iterations. Default: on for the
-        surface model, off for strip/line (where the coarse solves cost more than they save).
+        surface model; strip/line with ``candidates`` start from their own nested grids
+        (coarsened by 4, :mod:`skisnow.contact._strip`), which ``multilevel=False`` turns off
+        (then the rigid start).
     candidates
-        1D models: iterate on the candidate contact cells only (the start's support and the
-        cells whose estimated gap is small), with the operator restricted to them (a dense
-        matrix for up to 800 cells), then check the gap on the whole grid and resume with any
-        missed cell added. The same solution as the whole-grid iteration at a fraction of the
-        cost when the contact covers a small part of the ski. Default: on for strip and line
-        grids of at least 1024 stations.
+        Iterate where contact can be (default ``True``): on 1D models, nested grids give the
+        start and the iteration runs on the candidate contact cells (the start's support and
+        the cells whose estimated gap is small) with the operator restricted to them (dense and
+        compiled up to 800 cells, FFT over their span beyond); on the surface model, on the
+        bounding box of the candidates. The gap is then checked on the whole grid and the
+        iteration resumed with any missed cell: the solution of the whole-grid iteration at a
+        fraction of the cost. ``False``: the Polonsky–Keer iteration on the whole grid (and, on
+        1D models, from the rigid start), the reference the restricted solves are tested
+        against.
     raise_on_failure
         Raise :class:`~skisnow.ConvergenceError` (with ``.result``) when not converged.
 
