@@ -194,12 +194,12 @@ def _equal_accuracy(run, n: int) -> tuple[float, float, float, float]:
     raise AssertionError("unreachable")
 
 
-def row_hertz(sizes: list[int]) -> None:
+def row_hertz(sizes: list[int], peers: bool = True) -> None:
     os.environ.setdefault("OMP_NUM_THREADS", "1")
     try:
         import tamaas  # noqa: F401
 
-        peer = True
+        peer = peers
     except ImportError:
         peer = False
         print("    tamaas not importable: run with `uv run --group peers`; skisnow only")
@@ -388,6 +388,7 @@ def main() -> None:
     ap.add_argument("--rows", default=",".join(ROWS), help=f"comma list of {', '.join(ROWS)}")
     ap.add_argument("--repeat", type=int, default=30, help="repeats of the fast solves")
     ap.add_argument("--hertz-sizes", default="512,1024")
+    ap.add_argument("--no-peers", action="store_true", help="skip tamaas even if importable")
     args = ap.parse_args()
     rows = [r.strip() for r in args.rows.split(",") if r.strip()]
     unknown = sorted(set(rows) - set(ROWS))
@@ -406,7 +407,7 @@ def main() -> None:
         elif row == "scaling":
             row_scaling(args.repeat)
         elif row == "hertz":
-            row_hertz([int(s) for s in args.hertz_sizes.split(",")])
+            row_hertz([int(s) for s in args.hertz_sizes.split(",")], not args.no_peers)
         elif row == "flexible":
             row_flexible(max(3, args.repeat // 3))
         elif row == "sweep":

@@ -27,6 +27,7 @@ Public names (stable; the micro area builds on them): :func:`surface_kernel`,
 
 from __future__ import annotations
 
+import itertools
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -228,16 +229,17 @@ class Convolution:
                 f"shape {expected} (offsets -(n-1)..n-1 on every axis)"
             )
         fft_shape = tuple(sfft.next_fast_len(2 * n - 1, real=True) for n in shape)
-        # circulant embedding: offset k goes to index k mod L
+        # circulant embedding: offset k goes to index k mod L (kernel index i is offset i − (n−1));
+        # on each axis the offsets 0..n−1 fill the start, −(n−1)..−1 the end: block copies
         embedded = np.zeros(fft_shape)
-        src = kernel
-        for axis, n in enumerate(shape):
-            src = np.roll(src, -(n - 1), axis=axis)  # offset 0 first, then 1..n-1, then -(n-1)..-1
-        index = []
-        for n, size in zip(shape, fft_shape, strict=True):
-            idx = np.concatenate([np.arange(n), np.arange(size - (n - 1), size)])
-            index.append(idx)
-        embedded[np.ix_(*index)] = src
+        parts = [
+            ((slice(0, n), slice(n - 1, None)), (slice(size - (n - 1), size), slice(0, n - 1)))
+            for n, size in zip(shape, fft_shape, strict=True)
+        ]
+        for blocks in itertools.product(*parts):
+            dst = tuple(b[0] for b in blocks)
+            src = tuple(b[1] for b in blocks)
+            embedded[dst] = kernel[src]
         workers = default_workers() if workers is None else max(1, int(workers))
         real_axis = _real_axis(shape)
         spectrum = _forward(embedded, fft_shape, real_axis, workers)
@@ -368,7 +370,7 @@ def surface_convolution(
 ) -> Convolution:
     """:class:`Convolution` for :func:`surface_kernel` on a ``(nx, ny)`` grid."""
     return Convolution.from_kernel(
-        surface_kernel(shape, dx, dy, modulus=modulus), tuple(shape), workers=workers
+        surface_kernel(shape, dx, dy, modulus=modulus), tuple(shape), workers=workers, even=True
     )
 
 
@@ -377,7 +379,7 @@ def strip_convolution(
 ) -> Convolution:
     """:class:`Convolution` for :func:`strip_kernel` on ``n`` cells."""
     return Convolution.from_kernel(
-        strip_kernel(n, dx, width, modulus=modulus), (n,), workers=workers
+        strip_kernel(n, dx, width, modulus=modulus), (n,), workers=workers, even=True
     )
 
 
@@ -394,4 +396,5 @@ def line_convolution(
         line_kernel(n, dx, modulus=modulus, reference_length=reference_length),
         (n,),
         workers=workers,
+        even=True,
     )
