@@ -59,8 +59,10 @@ def test_restricted_operator_is_the_restriction(picked: list[int], dense: bool) 
     # FFT: that of the window spanned by the cells, the operator it acts on)
     inverse = conv.inverse()
     pre = op.preconditioner(inverse)
-    if not dense and idx[-1] - idx[0] + 1 < n:
-        lo, span = idx[0], idx[-1] - idx[0] + 1
+    if not dense and op.full.shape[0] < n:  # a window of the grid holding every cell
+        span = op.full.shape[0]
+        lo = int(idx[0] - op.cells[0])
+        assert lo >= 0 and lo + span <= n and span >= idx[-1] - idx[0] + 1
         window = strip_convolution(span, 1e-3, 0.044, modulus=2e8, workers=1)
         inverse, grid = window.inverse(), grid[lo : lo + span]
         idx = idx - lo

@@ -94,16 +94,13 @@ def _dense_solve(
     from skisnow.contact import _pk_kernel as pk
 
     (n,) = conv.shape
-    snow = getattr(conv, "snow", conv)  # a flexible ski's K_snow + K_beam: the snow's part
-    if cells.size == n and snow is conv:
+    if cells.size == n:
         k, m = _whole_dense(conv)
     else:
-        k = _toeplitz_rows(snow.kernel, n, cells)
+        k = _toeplitz_rows(conv.kernel, n, cells)  # type: ignore[arg-type]
         m = _NO_PRECONDITIONER
         if precondition:
-            m = _toeplitz_rows(_inverse_kernel(snow), n, cells, dtype=np.float32)
-        if snow is not conv:  # plus the beam's block (the preconditioner stays the snow's)
-            k += conv.beam.block(cells) * conv.cell_area
+            m = _toeplitz_rows(_inverse_kernel(conv), n, cells, dtype=np.float32)
     code = {"moment": pk.MOMENT, "load": pk.LOAD, "displacement": pk.DISPLACEMENT}[control]
     p, u, it, n_conv, hist, status = pk.pk_dense(
         k, m, bool(precondition), hh, xi, np.ascontiguousarray(p0, dtype=np.float64), code,
@@ -142,7 +139,7 @@ def solve_cells(
     """Polonsky–Keer on the cells ``cells`` of a 1D grid (p = 0 elsewhere), restricted operator:
     dense and compiled up to :data:`DENSE_MAX` cells, FFT over their span beyond."""
     tg = None if target is None else target[cells]
-    if cells.size <= DENSE_MAX or hasattr(conv, "snow"):
+    if cells.size <= DENSE_MAX:
         hh = h[cells] if tg is None else h[cells] - tg
         return _dense_solve(conv, cells, hh, xi[cells], p0[cells], control=control, total=total,
                             tol=tol, max_iter=max_iter, precondition=precondition)  # fmt: skip
@@ -174,12 +171,6 @@ def solve_on_candidates(
     they are given the pressure that closes their own gap, and the iteration resumes. Returns
     the result on the whole grid (u too), or None when the candidates are most of a grid too
     large for the dense operator (then the caller iterates on the whole grid by FFT).
-
-    ``conv`` may also be the flexible ski's K_snow + K_beam
-    (:class:`~skisnow.contact._coupled_operator.CoupledOperator`): then the restricted operator
-    is always dense (the snow's Toeplitz block plus the beam's block), the preconditioner the
-    snow's, and None is returned where the candidates exceed :data:`DENSE_MAX` cells or the
-    iteration would have to finish on the whole grid.
     """
     n = h.size
     if margin is None:
@@ -215,15 +206,12 @@ def solve_on_candidates(
     candidates = (p > 0) | (g < margin * scale)
     iterations, history = 0, []
     small = n <= DENSE_MAX
-    coupled = hasattr(conv, "snow")
     kw = dict(control=control, total=total, target=target, precondition=precondition)
     for _ in range(8):
         _close_gaps(candidates, _CANDIDATE_GAP)
         cells = np.flatnonzero(candidates)
-        if coupled and cells.size > DENSE_MAX:
-            return None
         if cells.size == 0 or (cells.size > _CANDIDATE_FRACTION * n and not small):
-            if iterations == 0 or coupled:
+            if iterations == 0:
                 return None
             break
         res = solve_cells(conv, cells, h, xi, p, tol=tol, max_iter=max_iter - iterations,
@@ -239,7 +227,7 @@ def solve_on_candidates(
             u = conv(p)
             n_conv += 1
         if not res.converged:
-            return None if coupled else whole(res)
+            return whole(res)
         g = gap(p, u, res.translation, res.rotation)
         scale = float(np.max(np.abs(u))) + 1e-300
         # cells without pressure that penetrate (beyond the solver's tolerance): off the
@@ -262,8 +250,6 @@ def solve_on_candidates(
                 status = SolverStatus.INFEASIBLE
                 return whole(res, status=status, message=status.message, displacement=u)
     # the candidates grew to most of the grid (or kept missing cells): finish on the whole grid
-    if coupled:
-        return None
     inverse = circulant_preconditioner(conv) if precondition else None
     res = polonsky_keer(
         CellOperator(conv),

@@ -133,6 +133,21 @@ def _inverse_kernel(conv: Convolution) -> np.ndarray:
     return c[np.arange(-(n - 1), n) % size]
 
 
+#: window sizes of :meth:`RestrictedOperator.build` are multiples of this many cells
+_WINDOW_STEP = 256
+
+
+@functools.lru_cache(maxsize=32)
+def _window(full: Convolution, span: int) -> Convolution:
+    """``full`` (1D) on a window of ``span`` cells: the same kernel, centred (cached)."""
+    (n,) = full.shape
+    assert full.kernel is not None
+    return Convolution.from_kernel(
+        full.kernel[n - span : n - 1 + span], (span,), workers=full.workers,
+        even=not np.iscomplexobj(full.spectrum),
+    )  # fmt: skip
+
+
 @dataclass(frozen=True, eq=False)
 class RestrictedOperator:
     """A 1D operator K restricted to the cells ``cells`` (rows and columns): ``K_SS``.
@@ -170,13 +185,12 @@ class RestrictedOperator:
         if dense:
             return cls(full, cells, _toeplitz_rows(full.kernel, n, cells))
         first, span = int(cells[0]), int(cells[-1] - cells[0] + 1)
+        # windows in steps of 256 cells: the few sizes a sweep meets are built once (cached)
+        span = min(n, -(-span // _WINDOW_STEP) * _WINDOW_STEP)
         if span == n:
             return cls(full, cells, None)
-        window = Convolution.from_kernel(
-            full.kernel[n - span : n - 1 + span], (span,), workers=full.workers,
-            even=not np.iscomplexobj(full.spectrum),
-        )  # fmt: skip
-        return cls(window, cells - first, None)
+        first = min(first, n - span)
+        return cls(_window(full, span), cells - first, None)
 
     @property
     def shape(self) -> tuple[int]:
