@@ -303,6 +303,14 @@ def row_sweep() -> None:
             print(
                 f"    {n} worker(s): compute {run.compute_time:.2f} s, wall {run.wall_time:.2f} s"
             )
+        # the same sweep in this process: its CPU time is what the workers need between them
+        c0 = time.process_time()
+        run = run_sweep(spec, Path(tmp) / "w0.zarr", workers=0)
+        cpu = time.process_time() - c0
+        print(
+            f"    in process: compute {run.compute_time:.2f} s, CPU {cpu:.2f} s = "
+            f"{1e3 * cpu / 2520:.2f} ms per solve; an idle 2-core machine needs ~{cpu / 2:.2f} s"
+        )
     record(
         "Figure 8/9 sweep, 2520 solves",
         f"{times[2]:.2f} s on 2 workers, {times[1]:.2f} s on 1 ({times[1] / times[2]:.2f}x)",
