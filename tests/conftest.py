@@ -25,3 +25,16 @@ def topography_dir(shared_dir: Path) -> Path:
     if not d.is_dir():
         pytest.skip("../shared/data/topographies is not present")
     return d
+
+
+@pytest.fixture(scope="session", autouse=True)
+def _one_blas_thread():
+    """The suite's dense linear algebra (identification's small solves, SVDs and Cholesky
+    factors; the contact's dense blocks) on one BLAS thread: on a shared 2-core machine
+    OpenBLAS's second thread spins for more than it computes (measured: the same
+    identification test 5 s or 42 s depending on the load). The answers are those of any
+    thread count; the tests check numbers, not BLAS's threading."""
+    from threadpoolctl import threadpool_limits
+
+    with threadpool_limits(limits=1, user_api="blas"):
+        yield
