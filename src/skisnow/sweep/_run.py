@@ -141,6 +141,8 @@ PRELOAD = (
     "scipy",
     "skisnow.sweep._point",
     "skisnow.contact",
+    "skisnow.contact._pk_kernel",  # numba and the compiled 1D loop (0.14 s a worker otherwise)
+    "threadpoolctl",
     "skisnow.ski",
 )
 
