@@ -1,4 +1,7 @@
-"""Figure 4 of Kalliorinne et al. (2023): both skis on the stone of the bench (E_counter = 70 GPa),
+"""Figure 4: both skis on the bench stone
+======================================
+
+Figure 4 of Kalliorinne et al. (2023): both skis on the stone of the bench (E_counter = 70 GPa),
 m = 30 kg at x_m = -120 mm. The stiff counter surface gives short contacts with spiky pressure.
 
     uv run python examples/fig4_stone.py [--small] [--out DIR] [--profile-source beam]

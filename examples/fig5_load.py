@@ -1,4 +1,7 @@
-"""Figure 5 of Kalliorinne et al. (2023): the skate ski under 30 kg and 60 kg at x_m = -120 mm on
+"""Figure 5: the skate ski under 30 and 60 kg
+==========================================
+
+Figure 5 of Kalliorinne et al. (2023): the skate ski under 30 kg and 60 kg at x_m = -120 mm on
 snow of 100 MPa. Doubling the load changes the profile, not only the force.
 
     uv run python examples/fig5_load.py [--small] [--out DIR] [--profile-source beam]

@@ -1,4 +1,7 @@
-"""Figure 6 of Kalliorinne et al. (2023): the classic ski under 60 kg at x_m = -210 mm (on the heel)
+"""Figure 6: the classic ski loaded on the heel and on the forefoot
+================================================================
+
+Figure 6 of Kalliorinne et al. (2023): the classic ski under 60 kg at x_m = -210 mm (on the heel)
 and -70 mm (collapsing the camber onto the kick zone: a middle zone appears), snow 100 MPa.
 
     uv run python examples/fig6_position.py [--small] [--out DIR] [--profile-source beam]

@@ -1,4 +1,7 @@
-"""Figure 7 of Kalliorinne et al. (2023): the classic ski under 30 kg at x_m = -120 mm on soft
+"""Figure 7: the classic ski on soft and on stiff snow
+===================================================
+
+Figure 7 of Kalliorinne et al. (2023): the classic ski under 30 kg at x_m = -120 mm on soft
 (50 MPa) and stiff (200 MPa) snow: the same rigid profile, rotated differently by moment balance.
 
     uv run python examples/fig7_snow.py [--small] [--out DIR] [--profile-source beam]

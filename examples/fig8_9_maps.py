@@ -1,4 +1,7 @@
-"""Figures 8 and 9 of Kalliorinne et al. (2023): apparent contact area (8) and mean pressure (9) of
+"""Figures 8 and 9: contact area and mean pressure over load and snow
+==================================================================
+
+Figures 8 and 9 of Kalliorinne et al. (2023): apparent contact area (8) and mean pressure (9) of
 the rear and front zones versus load (5-130 kg) at x_m = -120 mm, one line per snow modulus
 20-400 MPa in 20 MPa steps, with the Breitschädel (50 µm) estimate; for both shipped skis.
 

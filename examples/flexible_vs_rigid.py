@@ -1,4 +1,5 @@
 """How far is the paper's rigid-profile method from the flexible ski? (one command)
+================================================================================
 
 Kalliorinne et al. (2023, §3.2) press the profile loaded on the stone, as a rigid body, into the
 snow and call the soft-snow results "more approximate due to the error inherited from the BEM

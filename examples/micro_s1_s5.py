@@ -1,4 +1,5 @@
 """The S1–S5 table of seed paper 001 on skisnow's synthetic grinding presets.
+==========================================================================
 
 For each preset: roughness (plane removed, 33 µm low-pass); the bearing model's mean fractional
 real contact area A_fr(D) over grain diameters 450–750 µm (eq. 5–9) and its grain average

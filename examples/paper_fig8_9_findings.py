@@ -1,4 +1,5 @@
 """The Figure 8–9 findings of Kalliorinne et al. (2023), §4, checked on the shipped skate's maps.
+==============================================================================================
 
 The skate's rear and front maps (apparent contact area, mean pressure, patches, Breitschädel
 area) over load 5–80 kg (5 kg steps) at x_m = -120 mm and snow 20–400 MPa (20 MPa steps) are

@@ -6,7 +6,40 @@ rotate about the load point, is pressed into an elastic half-space of equivalent
 
 Equation map (paper → function):
 
-==============================================  ==========================================
+
+May import: ski
+=======
+===============================================  ==================================================
+Kalliorinne et al. (2023) eq. 2, E'              :func:`effective_modulus`, :class:`Material`,
+                                                 :data:`BASE`, :data:`STONE`, :func:`snow`
+Boussinesq / Love (1929) influence coefficients  :func:`surface_kernel`, :func:`strip_kernel`,
+(the half-space u = K p)                         :func:`line_kernel`, :class:`Convolution`
+Kalliorinne et al. (2023) eq. 3, force and       :func:`solve_contact` → :class:`ContactSolution`
+moment balance of the loaded profile             (models 'strip', 'surface', 'line'; control
+                                                 'moment', 'load', 'displacement')
+Polonsky & Keer (1999) constrained CG, with      :func:`polonsky_keer` →
+the moment constraint, a hardness cap            :class:`PolonskyKeerResult` on any
+(Sainsot & Lubrecht 2011) and a circulant        :class:`ComplianceOperator` (:class:`CellOperator`
+preconditioner (Vollebregt 2014)                 for a grid)
+the free Euler–Bernoulli ski bending on the      :func:`solve_flexible`, :func:`solve_flexible_ski`
+half-space, compliance K_snow + K_beam (MPRGP,   → :class:`FlexibleSolution`;
+Dostál & Schöberl 2005; active-set steps,        :func:`cantilever_compliance`
+Hintermüller, Ito & Kunisch 2002)
+contact zones and lengths; Breitschädel (2012)   :func:`contact_zones` → :class:`ZoneMetrics`,
+50 µm criterion                                  :func:`patches`
+Hertz (line, sphere), flat punch (Johnson 1985)  :mod:`skisnow.contact.reference`
+===============================================  ==================================================
+
+Files: :func:`read_profile` (CSV ``x_mm,height_mm``), :func:`write_fields`, :func:`read_fields`,
+:func:`fields_table`.
+
+Where the code is: ``_problem`` (validation, grid, operator), ``_starts`` (warm, multilevel and
+rigid starts), ``_polonsky_keer`` (the iteration), ``_operators`` (what it needs of K),
+``_candidates`` (the 1D candidate-cell restriction), ``_solver`` (:func:`solve_contact`, a short
+pipeline over them), ``_kernels`` (kernels and FFT convolution), ``_zones``, ``_materials``,
+``_io``; the flexible ski: ``_flexible`` (:func:`solve_flexible`), ``_flexible_pdas`` (active-set
+steps), ``_flexible_candidates``, ``_mprgp``, ``_beam_operator`` / ``_beam_kernel`` (the
+cantilever compliance), ``_coupled_operator``.
 
 May import: ski
 """
