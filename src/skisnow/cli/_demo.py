@@ -89,10 +89,13 @@ def run_contact_demo(
     Figures 8–9 (maps of a sweep over load and snow, both skis), the explorer page of both skis
     and one HTML report per ski (linking the explorer).
 
-    The maps use the paper's snow moduli (default ``snow_moduli`` 20–400 MPa in 20 MPa steps)
-    and stations (``n_points`` 4096) with a coarser load step (``masses`` [kg], default 5–130 kg
-    in 5 kg steps), at x_m = −120 mm: 1040 contact solves, about 8 s on one core;
-    ``skisnow sweep`` and ``examples/fig8_9_maps.py`` run the paper's 1 kg steps.
+    ONE sweep feeds the maps, the explorer and the reports: the paper's snow moduli (default
+    ``snow_moduli`` 20–400 MPa in 20 MPa steps) and stations (``n_points`` 4096) with a coarser
+    load step (``masses`` [kg], default 5–130 kg in 5 kg steps), at x_m = −120 mm, with the
+    fields along the ski kept for the explorer: 1040 contact solves. The demo's explorer
+    therefore moves the mass and the snow at −120 mm only; ``skisnow explore`` solves the
+    paper's six load positions. ``skisnow sweep`` and ``examples/fig8_9_maps.py`` run the paper's
+    1 kg steps. Figures are written as PNG (the reports carry their own SVG).
     ``ski_model='flexible'``: every case and map with the ski's beam bending on the snow.
     """
     import math
@@ -100,21 +103,14 @@ def run_contact_demo(
     import numpy as np
 
     from skisnow.cli._render import progress_bar
-    from skisnow.explore import ExplorerGrid, write_explorer
+    from skisnow.explore import explorer_from_sweeps, explorer_spec_options, write_explorer
     from skisnow.pipeline import solve_case
     from skisnow.plot import plot_contact, save_figure, sweep_figures
     from skisnow.report import study_ski, write_report
     from skisnow.ski import SHIPPED_SKIS
     from skisnow.sweep import SweepSpec, open_sweep, run_sweep
 
-    # the explorer: the maps' masses and moduli when given, else a coarse grid
-    coarse_moduli = tuple(e * 1e6 for e in (20, 40, 60, 100, 150, 200, 300, 400))
-    explorer_grid = ExplorerGrid(
-        masses=tuple(range(10, 131, 10)) if masses is None else tuple(masses),
-        snow_moduli=coarse_moduli if snow_moduli is None else tuple(snow_moduli),
-        n_points=n_points,
-        n_display=math.gcd(512, n_points),
-    )
+    png = ("png",)
     out.mkdir(parents=True, exist_ok=True)
     files: list[str] = []
     cases = []
@@ -127,7 +123,7 @@ def run_contact_demo(
         snow = "stone" if e_mpa >= 10_000 else f"snow modulus {e_mpa:g} MPa"
         title = f"{ski}: {m:g} kg at {x_mm:g} mm from the balance point, {snow}"
         files += [str(p) for p in save_figure(plot_contact(solution, zones, title=title),
-                                              out / stem)]  # fmt: skip
+                                              out / stem, formats=png)]  # fmt: skip
         cases.append(
             {
                 "figure": fig_no, "ski": ski, "mass_kg": m, "load_position_mm": x_mm,
@@ -149,6 +145,7 @@ def run_contact_demo(
         profile_source=profile_source,
         n_points=n_points,
         ski_model=ski_model,
+        **explorer_spec_options(math.gcd(512, n_points)),  # the explorer's fields and zones
     )  # fmt: skip
     store = out / (f"maps_{profile_source}.zarr" if ski_model == "rigid" else "maps_flexible.zarr")
     with progress_bar("sweep (Figures 8-9)", disable=not progress, transient=False) as bar:
@@ -158,13 +155,10 @@ def run_contact_demo(
     # Figure 8: {ski}_x-120mm_area, Figure 9: {ski}_x-120mm_mean_pressure, and the load share
     kinds = ("area", "mean_pressure", "load_share")
     for stem, fig in sweep_figures(ds, load_positions_mm=[-120.0], kinds=kinds).items():
-        files += [str(p) for p in save_figure(fig, out / stem)]
-    # The explorer page of both skis (Figure 8/9-style maps over the paper's bench positions),
-    # on a coarser grid than `skisnow explore`'s default to keep the demo short.
-    with progress_bar("explorer", disable=not progress, transient=False) as bar:
-        page, _ = write_explorer(spec.skis, out / "explore.html", explorer_grid,
-                                 profile_source=profile_source, ski_models=(ski_model,),
-                                 workers=workers, progress=bar)  # fmt: skip
+        files += [str(p) for p in save_figure(fig, out / stem, formats=png)]
+    # The explorer page of both skis from the same sweep (nothing solved again)
+    explorer = explorer_from_sweeps({ski_model: ds}, spec)
+    page, _ = write_explorer(spec.skis, out / "explore.html", dataset=explorer)
     files.append(str(page))
     for ski in spec.skis:
         study = study_ski(ski, dataset=ds, profile_source=profile_source, n_points=n_points,

@@ -11,7 +11,13 @@ palette and colour map come from :mod:`skisnow.plot`, embedded in its data (one 
 May import: sweep, plot
 """
 
-from skisnow.explore._data import ZONES, ExplorerGrid, explorer_dataset
+from skisnow.explore._data import (
+    ZONES,
+    ExplorerGrid,
+    explorer_dataset,
+    explorer_from_sweeps,
+    explorer_spec_options,
+)
 from skisnow.explore._pack import pack, quantise_curves, unpack
 from skisnow.explore._page import render_explorer, write_explorer
 
@@ -19,6 +25,8 @@ __all__ = [
     "ZONES",
     "ExplorerGrid",
     "explorer_dataset",
+    "explorer_from_sweeps",
+    "explorer_spec_options",
     "pack",
     "quantise_curves",
     "render_explorer",

@@ -12,9 +12,10 @@ surface −u(x), as block means of the solver's cells (:func:`skisnow.sweep.stat
 from __future__ import annotations
 
 import tempfile
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -85,8 +86,6 @@ def explorer_dataset(
     :func:`skisnow.sweep.run_sweep` (``0``: in this process). ``progress(done, total)`` is
     called after each chunk (one ski, position and snow modulus, all masses, warm-started).
     """
-    import xarray as xr
-
     from skisnow.sweep import SweepSpec, open_sweep, run_sweep
 
     grid = grid or ExplorerGrid()
@@ -102,8 +101,7 @@ def explorer_dataset(
             profile_source=profile_source,
             n_points=grid.n_points,
             ski_model=model,
-            zones=ZONES,
-            field_stations=grid.n_display,
+            **explorer_spec_options(grid.n_display),
         )
         for model in models
     ]  # every input is checked here, before any store is created
@@ -118,21 +116,50 @@ def explorer_dataset(
 
     with tempfile.TemporaryDirectory(prefix="skisnow-explore-") as tmp:
         root = Path(tmp if store is None else store)
-        parts = []
+        parts = {}
         for model, spec in zip(models, specs, strict=True):
             path = root / f"explore_{model}.zarr"
             run_sweep(spec, path, workers=workers, scheduler=scheduler, on_progress=on_chunk)
-            ds = open_sweep(path)
-            parts.append(ds[[*FIELDS, *METRICS, "patches", "converged", "x_mm"]].load())
-    ds = xr.concat(parts, dim=xr.DataArray(list(models), dims="model", name="model"))
+            parts[model] = open_sweep(path).load()
+    return explorer_from_sweeps(parts, specs[0])
+
+
+def explorer_spec_options(n_display: int) -> dict[str, object]:
+    """What a :class:`skisnow.sweep.SweepSpec` needs beyond its grid to feed an explorer page:
+    the explorer's zones and the fields on ``n_display`` stations (``SweepSpec(**grid,
+    **explorer_spec_options(512))``)."""
+    return {"zones": ZONES, "field_stations": int(n_display)}
+
+
+def explorer_from_sweeps(sweeps: Mapping[str, Any], spec: Any):
+    """The explorer's dataset from finished sweeps, one per ski model (``{'rigid': ds}``), each
+    run with :func:`explorer_spec_options` (fields and the explorer's zones) on the skis and
+    profile source of ``spec`` (a :class:`skisnow.sweep.SweepSpec`): a page can be built from a
+    sweep that was run for something else (the demo's maps) without solving again."""
+    import xarray as xr
+
+    models = list(sweeps)
+    if not models or set(models) - {"rigid", "flexible"}:
+        raise InputError(f"ski models: need 'rigid' and/or 'flexible', got {models}")
+    parts = []
+    for model in models:
+        ds = sweeps[model]
+        missing = [v for v in (*FIELDS, *METRICS, "patches", "converged", "x_mm") if v not in ds]
+        if missing or set(ZONES) - set(ds["zone"].values.tolist()):
+            raise InputError(
+                f"the {model} sweep lacks what the explorer shows ({', '.join(missing) or 'zones'})"
+                ": run it with skisnow.explore.explorer_spec_options"
+            )
+        parts.append(ds[[*FIELDS, *METRICS, "patches", "converged", "x_mm"]].sel(zone=list(ZONES)))
+    ds = xr.concat(parts, dim=xr.DataArray(models, dims="model", name="model"))
     ds["x_mm"] = ds["x_mm"].isel(model=0, drop=True)
     ds = ds.transpose(*POINT, "zone", "station", missing_dims="ignore")
     # the kick-zone marks of each ski [mm] (NaN without a kick zone), drawn on the page
-    marks = np.full((len(specs[0].skis), 2), np.nan)
-    for k, label in enumerate(specs[0].skis):
-        kz = specs[0].ski(label).kick_zone
+    marks = np.full((len(spec.skis), 2), np.nan)
+    for k, label in enumerate(spec.skis):
+        kz = spec.ski(label).kick_zone
         if kz is not None:
             marks[k] = (kz[0] * 1e3, kz[1] * 1e3)
     ds["kick_zone_mm"] = xr.DataArray(marks, dims=("ski", "mark"))
-    ds.attrs = {"profile_source": profile_source, "ski_models": list(models)}
+    ds.attrs = {"profile_source": spec.profile_source, "ski_models": models}
     return ds

@@ -115,16 +115,23 @@ def write_explorer(
     workers: int | None = 0,
     scheduler: str | None = None,
     progress: Callable[[int, int], None] | None = None,
+    dataset: Any = None,
 ) -> tuple[Path, Any]:
     """Solve the explorer's grid (:func:`skisnow.explore.explorer_dataset`) and write its page
-    to ``path`` atomically (a killed run leaves no half page). Returns ``(path, dataset)``."""
+    to ``path`` atomically (a killed run leaves no half page). Returns ``(path, dataset)``.
+
+    ``dataset``: an explorer dataset already solved (e.g. :func:`explorer_from_sweeps` of a
+    sweep run for something else); then nothing is solved and ``skis``/``grid``/the solver
+    options are ignored."""
     from skisnow import __version__
     from skisnow._atomic import atomic_write
     from skisnow.explore._data import explorer_dataset
 
-    ds = explorer_dataset(skis, grid, profile_source=profile_source, ski_models=ski_models,
-                          store=store, workers=workers, scheduler=scheduler,
-                          progress=progress)  # fmt: skip
+    if dataset is None:
+        dataset = explorer_dataset(skis, grid, profile_source=profile_source,
+                                   ski_models=ski_models, store=store, workers=workers,
+                                   scheduler=scheduler, progress=progress)  # fmt: skip
+    ds = dataset.copy()
     ds.attrs["skisnow_version"] = __version__
     names = ", ".join(display_name(s) for s in ds["ski"].values)
     page = render_explorer(
