@@ -29,7 +29,11 @@ from packaging.requirements import Requirement
 from packaging.tags import sys_tags
 from packaging.utils import canonicalize_name, parse_wheel_filename
 
-ROOT = Path(__file__).resolve().parents[1]
+#: The project whose pyproject.toml and uv.lock are read (default: this repository).
+ROOT = Path(os.environ.get("WEIGH_ROOT", Path(__file__).resolve().parents[1]))
+#: Requirements weighed as one unit (they serve one feature and share most of what they bring).
+UNITS = {"jax": "camber network", "equinox": "camber network", "optax": "camber network",
+         "optimistix": "camber network"}  # fmt: skip
 #: The module a distribution is imported as, where the names differ.
 MODULES = {
     "dask": "dask.array",
@@ -130,35 +134,46 @@ def main() -> None:
     args = p.parse_args()
     dists, wheels = _installed(), _wheel_mb()
     rows, claimed = [], {}
-    sets = requirement_sets()
-    everything = [(s, r) for s, reqs in sets.items() for r in reqs]
-    closures = {(s, r.name): _closure(r.name, dists, r.extras) for s, r in everything}
-    for (s, name), clo in closures.items():
+    units: dict[tuple[str, str], list[Requirement]] = {}
+    for s, reqs in requirement_sets().items():
+        for r in reqs:
+            name = UNITS.get(canonicalize_name(r.name), r.name) if s == "default" else r.name
+            units.setdefault((s, name), []).append(r)
+    closures = {
+        key: set().union(*(_closure(r.name, dists, r.extras) for r in reqs))
+        for key, reqs in units.items()
+    }
+    for key, clo in closures.items():
         for d in clo:
-            claimed.setdefault(d, set()).add((s, name))
-    for s, r in everything:
-        key = (s, r.name)
+            claimed.setdefault(d, set()).add(key)
+    for key, reqs in units.items():
+        s, _ = key
         own = sorted(d for d in closures[key] if claimed[d] == {key})
-        installed = canonicalize_name(r.name) in dists
+        installed = all(canonicalize_name(r.name) in dists for r in reqs)
         mb = sum(_size_mb(dists[d]) for d in own)
         wmb = sum(wheels.get(d, 0.0) for d in own)
-        mod = MODULES.get(canonicalize_name(r.name), re.sub(r"[-.]", "_", r.name).lower())
         warm = cold = None
         if installed and not args.no_import:
-            warm, cold = _import_s(mod, cold=False), _import_s(mod, cold=True)
-        rows.append((s, str(r), installed, mb, wmb, warm, cold, own))
+            mods = [MODULES.get(canonicalize_name(r.name), re.sub(r"[-.]", "_", r.name).lower())
+                    for r in reqs]  # fmt: skip
+            warm = _import_s("; import ".join(mods), cold=False)
+            cold = _import_s("; import ".join(mods), cold=True)
+        label = " + ".join(str(r) for r in reqs)
+        rows.append((s, label, installed, mb, wmb, warm, cold, own))
     shared = sorted(d for d, owners in claimed.items() if len(owners) > 1)
     rows.append(("shared", "(needed by several)", True, sum(_size_mb(dists[d]) for d in shared),
                  sum(wheels.get(d, 0.0) for d in shared), None, None, shared))  # fmt: skip
     total = sum(_size_mb(d) for d in dists.values())
-    fmt = (lambda v: "—" if v is None else f"{v:.2f}")  # noqa: E731
+    fmt = lambda v: "—" if v is None else f"{v:.2f}"  # noqa: E731
     if args.markdown:
-        print("| set | requirement | venv MB | wheels MB | import warm s | import cold s | brings |")
+        print("| set | requirement | venv MB | wheels MB | import warm s | import cold s "
+              "| brings |")  # fmt: skip
         print("| --- | --- | ---: | ---: | ---: | ---: | --- |")
     for s, req, inst, mb, wmb, warm, cold, own in rows:
         brings = ", ".join(own) if inst else "(not installed)"
         if args.markdown:
-            print(f"| {s} | `{req}` | {mb:.0f} | {wmb:.0f} | {fmt(warm)} | {fmt(cold)} | {brings} |")
+            print(f"| {s} | `{req}` | {mb:.0f} | {wmb:.0f} | {fmt(warm)} | {fmt(cold)} "
+                  f"| {brings} |")  # fmt: skip
         else:
             print(f"{s:18} {req:32} {mb:7.0f} MB {wmb:6.0f} MB  {fmt(warm):>5} {fmt(cold):>5} s"
                   f"  {brings}")  # fmt: skip

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import importlib.util
+import sys
 from pathlib import Path
 
 import numpy as np
@@ -18,13 +20,19 @@ from skisnow.bench import (
     write_bench,
 )
 
+#: Parquet needs the optional pyarrow (the ``parquet`` extra); CI installs every extra.
+needs_pyarrow = pytest.mark.skipif(
+    importlib.util.find_spec("pyarrow") is None,
+    reason="Parquet bench files need the parquet extra: uv sync --extra parquet",
+)
+
 
 @pytest.fixture(scope="module")
 def bench() -> BenchData:
     return run_bench("classic", masses=[30, 35, 60, 65], load_positions=[-0.08], noise=1e-5, seed=1)
 
 
-@pytest.mark.parametrize("suffix", [".csv", ".parquet"])
+@pytest.mark.parametrize("suffix", [".csv", pytest.param(".parquet", marks=needs_pyarrow)])
 def test_round_trip_is_exact_and_metrics_equal(
     bench: BenchData, tmp_path: Path, suffix: str
 ) -> None:
@@ -111,6 +119,7 @@ def test_too_few_points(tmp_path: Path) -> None:
     _expect(_write_csv(tmp_path, t), "mass_kg=20.0", f"{MIN_PROFILE_POINTS - 1} samples")
 
 
+@needs_pyarrow
 def test_parquet_errors_name_the_row(tmp_path: Path) -> None:
     t = _small_table()
     t.loc[7, "height_mm"] = np.nan
@@ -127,14 +136,34 @@ def test_file_level_errors(tmp_path: Path, bench: BenchData) -> None:
         "# skisnow-bench-metadata: {not json\n" + _small_table().to_csv(index=False)
     )
     _expect(bad_meta, "line 1", "not valid JSON")
-    garbage = tmp_path / "g.parquet"
-    garbage.write_bytes(b"not parquet at all")
-    _expect(garbage, "not a readable Parquet file")
+    if importlib.util.find_spec("pyarrow") is not None:
+        garbage = tmp_path / "g.parquet"
+        garbage.write_bytes(b"not parquet at all")
+        _expect(garbage, "not a readable Parquet file")
     empty = tmp_path / "e.csv"
     empty.write_text(",".join(_small_table().columns) + "\n")
     _expect(empty, "no rows")
     with pytest.raises(FileFormatError, match="unknown bench file type"):
         write_bench(bench, tmp_path / "b.xlsx")
+
+
+def test_parquet_without_its_extra_says_which_extra(
+    bench: BenchData, tmp_path: Path, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """Without pyarrow (an optional dependency), a Parquet bench file is refused naming the file
+    and the extra to install, as an InputError (exit code 2) that is also an ImportError."""
+    from skisnow._optional import MissingDependencyError
+
+    for name in ("pyarrow", "pyarrow.parquet"):
+        monkeypatch.setitem(sys.modules, name, None)  # import fails as if it were not installed
+    for call in (lambda p: write_bench(bench, p), read_bench):
+        path = tmp_path / "b.parquet"
+        path.write_bytes(b"PAR1")
+        with pytest.raises(MissingDependencyError, match=r"b\.parquet.*uv sync --extra parquet"):
+            call(path)
+    assert issubclass(MissingDependencyError, InputError)
+    assert issubclass(MissingDependencyError, ImportError)
+    assert write_bench(bench, tmp_path / "b.csv").is_file()  # CSV needs nothing optional
 
 
 def test_benchdata_validates_in_memory() -> None:

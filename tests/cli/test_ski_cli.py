@@ -72,7 +72,7 @@ def test_bench_then_metrics(tmp_path: Path, capsys: pytest.CaptureFixture[str]) 
 
 
 def test_range_syntax(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
-    out = tmp_path / "r.parquet"
+    out = tmp_path / "r.csv"
     doc = _json(
         capsys,
         [
@@ -117,9 +117,9 @@ def test_ski_part_of_the_demo_writes_files(tmp_path: Path) -> None:
     files = [Path(f) for f in doc["files"]]
     assert all(f.is_file() for f in files)
     names = {f.name for f in files}
-    assert names >= {"bench_classic.parquet", "bench_skate.parquet", "camber_profiles.png"}
+    assert names >= {"bench_classic.csv", "bench_skate.csv", "camber_profiles.png"}
     assert [m["ski"] for m in doc["metrics"]] == ["classic", "skate"]
-    assert read_bench(tmp_path / "out" / "bench_skate.parquet").metadata["ski"] == "skate"
+    assert read_bench(tmp_path / "out" / "bench_skate.csv").metadata["ski"] == "skate"
 
 
 def test_subprocess_smoke() -> None:

@@ -249,9 +249,10 @@ def write_bench(data: BenchData, path: str | Path) -> Path:
 
         atomic_write(path, "\n".join(lines) + "\n" + body)
     else:
-        import pyarrow as pa
-        import pyarrow.parquet as pq
+        from skisnow._optional import require
 
+        pa = require("pyarrow", feature=f"{path}: Parquet bench files")
+        pq = require("pyarrow.parquet", feature=f"{path}: Parquet bench files")
         tbl = pa.Table.from_pandas(data.table, preserve_index=False)
         md = dict(tbl.schema.metadata or {})
         md[_PARQUET_KEY] = meta.encode("utf-8")
@@ -311,9 +312,10 @@ def read_bench(path: str | Path) -> BenchData:
         # data row i (0-based) sits on file line n_comment + 2 + i (1-based; header first)
         clean = validate_bench_table(table, where=str(path), row_offset=n_comment + 2, csv=True)
     else:
-        import pyarrow as pa
-        import pyarrow.parquet as pq
+        from skisnow._optional import require
 
+        pa = require("pyarrow", feature=f"{path}: Parquet bench files")
+        pq = require("pyarrow.parquet", feature=f"{path}: Parquet bench files")
         try:
             tbl = pq.read_table(path)
         except (OSError, pa.ArrowException) as exc:
