@@ -119,7 +119,7 @@ def figure(table: pd.DataFrame):
 
 
 def main() -> None:
-    p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    p = argparse.ArgumentParser(description=(__doc__ or "").partition("\n")[0])
     p.add_argument("--out", type=Path, default=Path("skisnow-examples"), help="output directory")
     p.add_argument("--small", action="store_true", help="1024 stations (fast; for tests)")
     p.add_argument("--formats", default="png,svg", help="figure formats")
