@@ -6,9 +6,6 @@ rotate about the load point, is pressed into an elastic half-space of equivalent
 
 Equation map (paper → function):
 
-
-May import: ski
-=======
 ===============================================  ==================================================
 Kalliorinne et al. (2023) eq. 2, E'              :func:`effective_modulus`, :class:`Material`,
                                                  :data:`BASE`, :data:`STONE`, :func:`snow`
