@@ -103,9 +103,12 @@ def _escape_bars(app, what, name, obj, options, lines: list[str]) -> None:
 def _no_type_docstring(app, what, name, obj, options, lines: list[str]) -> None:
     """A constant without a doc-comment shows nothing, not its type's docstring (a ``dict``'s, a
     :class:`~skisnow.materials.Material`'s); runs after numpydoc."""
-    if what in ("data", "attribute") and getattr(obj, "__doc__", None) == getattr(
-        type(obj), "__doc__", None
-    ):
+    if what not in ("data", "attribute") or inspect.isclass(obj) or inspect.isroutine(obj):
+        return
+    own = getattr(obj, "__doc__", None)
+    typedoc = inspect.getdoc(type(obj)) or ""
+    first = next((ln.strip() for ln in typedoc.splitlines() if ln.strip()), "")
+    if own == type(obj).__doc__ or (first and any(first in ln for ln in lines[:8])):
         lines[:] = []
 
 
