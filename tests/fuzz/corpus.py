@@ -49,6 +49,7 @@ CLEAN_ERRORS = {
     "ImplausibleValueError",
     "UnsupportedLoadError",
     "ConvergenceError",
+    "MissingDependencyError",  # an InputError: an optional extra is needed (it names the extra)
 }
 VALID_WORDS = re.compile(
     r"need|expect|valid|must|use |should|at least|allowed|give |only|choose|possible|"
