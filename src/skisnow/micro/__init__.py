@@ -19,7 +19,11 @@ of Cross Country Skis", Front. Mech. Eng. 7:659995 (2021):
   :func:`read_rank_table`, :func:`table4_comparison`;
 * elastic–perfectly-plastic flat-ice contact (Scherge et al. 2021, Fig. 3):
   :func:`elastoplastic_contact` (on the contact package's Polonsky–Keer core with a hardness
-  cap), :func:`flat_plastic_area`.
+  cap), :func:`flat_plastic_area`;
+* the same contact over a grid of nominal pressures, on the mirror-continued half-space
+  (:class:`MirrorOperator`): :func:`elastoplastic_curve` — real area, mean separation and the
+  gap distribution behind the reciprocal separation (Kalliorinne et al. 2023, Lubricants
+  11(10) 427).
 
 May import: contact
 """
@@ -39,6 +43,12 @@ from skisnow.micro._elastoplastic import (
     flat_plastic_area,
     ice_base_modulus,
 )
+from skisnow.micro._ep_curve import (
+    GAP_EDGES,
+    ElastoplasticCurve,
+    elastoplastic_curve,
+    reciprocal_from_bins,
+)
 from skisnow.micro._grains import (
     PAPER_GRAIN_FIT,
     GrainFit,
@@ -57,6 +67,7 @@ from skisnow.micro._ice import (
     ice_hardness,
     uhmwpe_hardness,
 )
+from skisnow.micro._mirror import MirrorOperator
 from skisnow.micro._roughness import (
     DEFAULT_CUTOFF,
     Roughness,
@@ -89,6 +100,7 @@ from skisnow.micro._topography import (
 
 __all__ = [
     "DEFAULT_CUTOFF",
+    "GAP_EDGES",
     "ICE",
     "PAPER_GRAIN_FIT",
     "PRESETS",
@@ -96,11 +108,13 @@ __all__ = [
     "BearingMap",
     "BearingSweep",
     "Correlation",
+    "ElastoplasticCurve",
     "ElastoplasticResult",
     "GrainFit",
     "GrindSpec",
     "GroovePass",
     "Material",
+    "MirrorOperator",
     "RankTable",
     "Regime",
     "Roughness",
@@ -114,6 +128,7 @@ __all__ = [
     "critical_r",
     "deformation_regime",
     "elastoplastic_contact",
+    "elastoplastic_curve",
     "fill_missing",
     "fit_grain_distribution",
     "flat_plastic_area",
@@ -131,6 +146,7 @@ __all__ = [
     "rank_table",
     "read_rank_table",
     "read_topography",
+    "reciprocal_from_bins",
     "remove_form",
     "roughness",
     "sample_grain_diameters",

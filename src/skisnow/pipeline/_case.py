@@ -37,7 +37,9 @@ if TYPE_CHECKING:
         Zone,
         ZoneMetrics,
     )
+    from skisnow.multiscale import Base, FrictionParameters, MicroCurves, RealContact, RealSummary
     from skisnow.ski import Ski
+    from skisnow.snow import Snow
 
 #: Contact models of :func:`skisnow.contact.solve_contact` a case may use.
 MODELS: tuple[str, ...] = ("strip", "surface")
@@ -86,6 +88,14 @@ class Case:
     warnings
         Texts of what the caller should know: the camber network used outside its trained
         domain (:class:`~skisnow.DomainWarning`), a solve that did not converge.
+    snow
+        The :class:`~skisnow.snow.Snow` when the case was given one (``None`` with a bare
+        ``snow_modulus``).
+    texture
+        The :class:`~skisnow.multiscale.Base` when a textured base was asked for.
+    real
+        The real contact along the ski (:class:`~skisnow.multiscale.RealContact`) when a
+        textured base and a snow were given; :meth:`real_summary` per region and patch.
     """
 
     ski: Ski | None = field(repr=False)
@@ -107,6 +117,9 @@ class Case:
     warnings: tuple[str, ...] = ()
     ski_model: str = "rigid"
     flexible: FlexibleSolution | None = field(default=None, repr=False)
+    snow: Snow | None = field(default=None, repr=False)
+    texture: Base | None = field(default=None, repr=False)
+    real: RealContact | None = field(default=None, repr=False)
 
     @property
     def route(self) -> str:
@@ -120,6 +133,26 @@ class Case:
         """The Breitschädel (2012) 50 µm contact estimate per zone (lengths and areas)."""
         return self.zones.breitschaedel
 
+    def station_masks(self) -> dict[str, np.ndarray]:
+        """Station masks of the regions fixed by the ski and of every contact patch (see
+        :func:`skisnow.pipeline._real.station_masks`)."""
+        from skisnow.pipeline._real import station_masks
+
+        return station_masks(
+            self.solution.x, self.solution.pressure, kick_zone=self.kick_zone,
+            split=self.zones.split, load_position=self.load_position,
+        )  # fmt: skip
+
+    def real_summary(self) -> dict[str, RealSummary]:
+        """The real contact per region and patch and in total (needs a base with a texture
+        and a snow: :attr:`real`)."""
+        if self.real is None:
+            raise InputError(
+                f"case {self.label!r} has no real contact: solve it with base= (a texture: "
+                "'S1'..'S5', 'smooth', a topography file) and snow="
+            )
+        return self.real.summarize(self.station_masks())
+
 
 def _positive(name: str, value: Any) -> float:
     from skisnow._checks import positive_finite  # the one positive-and-finite rule
@@ -127,17 +160,14 @@ def _positive(name: str, value: Any) -> float:
     return positive_finite(name, value)
 
 
-def _check_inputs(
-    mass: Any, load_position: Any, snow_modulus: Any, model: str
-) -> tuple[float, float, float]:
+def _check_inputs(mass: Any, load_position: Any, model: str) -> tuple[float, float]:
     m = _positive("mass [kg]", mass)
-    e = _positive("snow_modulus [Pa]", snow_modulus)
     xm = float(load_position)
     if not math.isfinite(xm):
         raise InputError(f"load_position [m]: need a finite value, got {load_position!r}")
     if model not in MODELS:
         raise InputError(f"model: {model!r} is not one of {MODELS}")
-    return m, xm, e
+    return m, xm
 
 
 def _given_profile(profile: tuple[ArrayLike, ArrayLike], label: str, mass: float):
@@ -159,11 +189,11 @@ def solve_case(
     *,
     mass: float,
     load_position: float,
-    snow_modulus: float,
+    snow_modulus: float | None = None,
     model: str = "strip",
     profile_source: str = DEFAULT_PROFILE_SOURCE,
     n_points: int = DEFAULT_N_POINTS,
-    base: Material | float | None = None,
+    base: Material | float | Base | str | None = None,
     poisson: float = 0.3,
     start: ArrayLike | None = None,
     profile: tuple[ArrayLike, ArrayLike] | None = None,
@@ -173,6 +203,10 @@ def solve_case(
     tol: float = DEFAULT_TOL,
     workers: int | None = None,
     ski_model: str = "rigid",
+    snow: Snow | str | None = None,
+    friction: FrictionParameters | None = None,
+    curves: MicroCurves | None = None,
+    cache_dir: str | None = None,
 ) -> Case:
     """Solve one case end to end: ski → loaded profile → contact → zones.
 
@@ -194,7 +228,7 @@ def solve_case(
     load_position
         x_m [m] from the balance point, positive toward the tip.
     snow_modulus
-        E_counter of the snow [Pa] (Poisson ratio ``poisson``).
+        E_counter of the snow [Pa] (Poisson ratio ``poisson``); or give ``snow``.
     model
         ``'strip'`` (1-D, fast) or ``'surface'`` (2-D grid of ``n_across`` cells across).
     profile_source
@@ -205,7 +239,9 @@ def solve_case(
         Stations along the ski.
     base
         The ski base: a :class:`~skisnow.contact.Material` or a modulus [Pa] (Poisson ratio
-        ``poisson``); default :data:`skisnow.contact.BASE` (UHMWPE, 900 MPa, ν = 0.3).
+        ``poisson``); default :data:`skisnow.contact.BASE` (UHMWPE, 900 MPa, ν = 0.3). A base
+        with a texture — a :class:`~skisnow.multiscale.Base`, a grind ``'S1'``..``'S5'``,
+        ``'smooth'`` or a topography file — also asks for the real contact (with ``snow``).
     poisson
         ν of the snow (and of a base given as a number).
     start
@@ -228,10 +264,24 @@ def solve_case(
         together (:func:`skisnow.contact.solve_flexible`); needs a ski (shipped or a ski file),
         not a network or a bare profile, and ignores ``profile_source``.
 
+    snow
+        The snow: a :class:`~skisnow.snow.Snow`, a preset (``'fine-grained'``...) or a snow
+        file; gives E_counter and ν (then leave ``snow_modulus`` unset) and, with a textured
+        ``base``, the temperature and grains of the real contact.
+    friction
+        :class:`~skisnow.multiscale.FrictionParameters` of the proxies (default: the cited
+        defaults).
+    curves
+        Precomputed :class:`~skisnow.multiscale.MicroCurves` of this base × snow (sweeps pass
+        them to skip the cache look-up).
+    cache_dir
+        Directory of the micro-curve cache (default: :func:`skisnow.multiscale.cache_dir`).
+
     Returns
     -------
     Case
-        Inputs, profile, contact solution, zones, converged flag and warnings.
+        Inputs, profile, contact solution, zones, converged flag and warnings; with a textured
+        base and a snow, the real contact along the ski (:attr:`Case.real`).
 
     Raises
     ------
@@ -241,15 +291,19 @@ def solve_case(
         The profile cannot carry the load (e.g. the contact would reach an end of the ski).
     """
     from skisnow.contact import BASE, contact_zones, effective_modulus, solve_contact
+    from skisnow.pipeline._real import resolve_media
 
-    m, xm, e = _check_inputs(mass, load_position, snow_modulus, model)
+    m, xm = _check_inputs(mass, load_position, model)
     if ski_model not in SKI_MODELS:
         raise InputError(f"ski_model: {ski_model!r} is not one of {SKI_MODELS}")
+    media = resolve_media(snow_modulus, snow, base)
+    e = media.snow_modulus
+    real_kw = {"friction": friction, "curves": curves, "cache_dir": cache_dir}
     if ski_model == "flexible":
         return _flexible_case(
-            ski, m, xm, e, model=model, n_points=n_points, base=base, poisson=poisson,
+            ski, m, xm, media, model=model, n_points=n_points, poisson=poisson,
             start=start, profile=profile, width=width, n_across=n_across, tol=tol,
-            workers=workers,
+            workers=workers, real_kw=real_kw,
         )  # fmt: skip
     notes: list[str] = []
     if ski is None:
@@ -287,8 +341,8 @@ def solve_case(
             h = heights[0]
     # The rigid ski on elastic snow (eq. 2-3); the flexible ski replaces this step and the
     # profile above by one coupled solve (_flexible_case).
-    counter_base = BASE if base is None else base
-    modulus = effective_modulus(e, counter_base, poisson=poisson)
+    counter_base = BASE if media.base_material is None else media.base_material
+    modulus = effective_modulus(media.counter, counter_base, poisson=poisson)
     solution = solve_contact(
         x,
         h,
@@ -303,6 +357,7 @@ def solve_case(
         workers=workers,
     )
     zones = contact_zones(solution, kick_zone=kick_zone)
+    real = _real(solution, media, notes, real_kw)
     if not solution.converged:
         notes.append(
             f"contact solver did not converge in {solution.iterations} iterations "
@@ -326,7 +381,23 @@ def solve_case(
         zones=zones,
         converged=bool(solution.converged),
         warnings=tuple(notes),
+        snow=media.snow,
+        texture=media.base,
+        real=real,
     )
+
+
+def _real(solution: Any, media: Any, notes: list[str], real_kw: dict[str, Any]) -> Any:
+    """The real contact of a solved case (None without a texture), noting held pressures."""
+    from skisnow.pipeline._real import case_real_contact
+
+    real = case_real_contact(solution, media, **real_kw)
+    if real is not None and real.beyond.any():
+        notes.append(
+            f"apparent pressure above the micro curves' last point at {int(real.beyond.sum())} "
+            "station(s): the real contact there is held at that point's values"
+        )
+    return real
 
 
 #: Physical range of the snow (counter-surface) modulus of a flexible case [Pa]: from the
@@ -338,11 +409,10 @@ def _flexible_case(
     ski: Any,
     m: float,
     xm: float,
-    e: float,
+    media: Any,
     *,
     model: str,
     n_points: int,
-    base: Any,
     poisson: float,
     start: ArrayLike | None,
     profile: Any,
@@ -350,6 +420,7 @@ def _flexible_case(
     n_across: int,
     tol: float,
     workers: int | None,
+    real_kw: dict[str, Any],
 ) -> Case:
     """The flexible ski on elastic snow: beam and half-space in one solve (no loaded profile)."""
     from skisnow.contact import BASE, contact_zones, effective_modulus, solve_flexible
@@ -361,6 +432,7 @@ def _flexible_case(
         )
     if width is not None:
         raise InputError("width: a flexible case uses the ski's own width")
+    e = media.snow_modulus
     lo, hi = SNOW_MODULUS_LIMITS
     if not lo <= e <= hi:
         raise InputError(
@@ -369,7 +441,8 @@ def _flexible_case(
         )
     s = resolve_ski(ski)
     x = stations(s, n_points)
-    modulus = effective_modulus(e, BASE if base is None else base, poisson=poisson)
+    base = media.base_material
+    modulus = effective_modulus(media.counter, BASE if base is None else base, poisson=poisson)
     flex = solve_flexible(
         x,
         s.free_camber(x),
@@ -386,7 +459,10 @@ def _flexible_case(
         raise_on_failure=False,
     )
     solution = flex.contact
-    notes = () if flex.converged else (f"flexible solve did not converge: {solution.message}",)
+    notes: list[str] = []
+    real = _real(solution, media, notes, real_kw)
+    if not flex.converged:
+        notes.append(f"flexible solve did not converge: {solution.message}")
     zones = contact_zones(solution, kick_zone=s.kick_zone)
     height = solution.height if solution.height.ndim == 1 else solution.height[:, 0]
     return Case(
@@ -406,7 +482,10 @@ def _flexible_case(
         solution=solution,
         zones=zones,
         converged=bool(flex.converged),
-        warnings=notes,
+        warnings=tuple(notes),
         ski_model="flexible",
         flexible=flex,
+        snow=media.snow,
+        texture=media.base,
+        real=real,
     )
