@@ -218,14 +218,26 @@ def elastoplastic_curve(
         k: [] for k in ("pm", "fa", "ra", "pl", "us", "ga", "gr", "gb", "it", "ok", "res")
     }
     ratio = 1.0  # the last pressure's N_contact·H/(N·p): the plastic level's correction
+    approach = float(order[0])
+
+    def level(load: float) -> float:
+        """The height above which N·load/H pixels lie (the rigid-plastic approach)."""
+        return float(order[min(int(flat.size * load / hardness), flat.size - 1)])
+
     for target in p_req:
         state["it"] = 0
-        approach = _meet(solve_at, target, order, hardness, ratio, scale, rtol)
+        if math.isfinite(hardness):  # start at the plastic level, corrected by the last ratio
+            d0 = level(target * ratio)
+            step = abs(level(1.5 * target * ratio) - d0)
+        else:  # elastic: from the last approach (the first: the highest pixel)
+            d0, step = approach, 0.01 * scale
+        approach = _meet(solve_at, target, d0, step, scale, rtol)
         p = state["p"]
         gap = operator(p) - flat + approach
         contact = p > 0
         n_contact = int(contact.sum())
-        ratio = max(n_contact * hardness / (flat.size * target), 1.0)
+        if math.isfinite(hardness):
+            ratio = max(n_contact * hardness / (flat.size * target), 1.0)
         area, recip, below = _bins(gap, ~contact, GAP_EDGES)
         pm = float(p.mean())
         out["pm"].append(pm)
@@ -260,35 +272,20 @@ def elastoplastic_curve(
     )
 
 
-def _meet(
-    solve_at,
-    target: float,
-    order: np.ndarray,
-    hardness: float,
-    ratio: float,
-    scale: float,
-    rtol: float,
-) -> float:
-    """The approach d with mean p(d) = target: a bracket around the plastic level of the load
-    (corrected by the previous pressure's elastic share), then the Illinois variant of regula
-    falsi on log p (mean p falls monotonically with d)."""
-    size = order.size
-
-    def level(load: float) -> float:
-        return float(order[min(int(size * load / hardness), size - 1)])
+def _meet(solve_at, target: float, d0: float, step: float, scale: float, rtol: float) -> float:
+    """The approach d with mean p(d) = target: from the guess ``d0``, steps of growing size
+    until the sign of log(p̄/target) changes (p̄ falls monotonically with d), then the Illinois
+    variant of regula falsi on log p̄."""
 
     def f(d: float) -> float:
-        pm = solve_at(d)
-        return math.log(max(pm, 1e-300) / target)
+        return math.log(max(solve_at(d), 1e-300) / target)
 
-    a = level(target * ratio)
-    fa = f(a)
+    a, fa = d0, f(d0)
     if abs(fa) <= rtol:
         return a
-    step = max(abs(level(target * ratio * 1.5) - a), 1e-4 * scale)
-    b, fb = a, fa
-    for _ in range(200):  # expand until the sign changes (f decreases with d)
-        b = b - step if fa < 0 else b + step
+    step = max(step, 1e-6 * scale)
+    for _ in range(200):  # expand until the sign changes
+        b = a - step if fa < 0 else a + step
         fb = f(b)
         if abs(fb) <= rtol:
             return b
@@ -297,6 +294,7 @@ def _meet(
         a, fa, step = b, fb, 2.0 * step
     else:  # pragma: no cover - the load is always reachable between max h and a deep approach
         raise InputError(f"no approach carries the mean pressure {target:g} Pa")
+    c = b
     for _ in range(200):
         c = b - fb * (b - a) / (fb - fa)
         fc = f(c)

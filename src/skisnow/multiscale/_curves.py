@@ -173,11 +173,12 @@ class MicroCurves:
         return np.asarray(gap, dtype=np.float64) + self.rest_mean
 
     def rest_reciprocal(self, gap: np.ndarray | float, film_cutoff: float) -> np.ndarray:
-        """⟨1/max(G + h_max − h, u_c)⟩ [1/m] at macroscopic gaps G [m] (tabulated in log G)."""
+        """⟨1/max(G + h_max − h, u_c)⟩ [1/m] at macroscopic gaps G [m] (tabulated, log-log)."""
         g_grid, r_grid = self._rest_table(float(film_cutoff))
         g = np.maximum(np.asarray(gap, dtype=np.float64), 0.0)
-        lg = np.log(np.maximum(g, g_grid[1]))
-        out = np.interp(lg, np.log(g_grid[1:]), r_grid[1:])
+        out = np.exp(
+            np.interp(np.log(np.maximum(g, g_grid[1])), np.log(g_grid[1:]), np.log(r_grid[1:]))
+        )
         return np.where(g <= g_grid[1], np.interp(g, g_grid[:2], r_grid[:2]), out)
 
     @functools.lru_cache(maxsize=8)  # noqa: B019

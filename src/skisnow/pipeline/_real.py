@@ -96,6 +96,11 @@ def case_real_contact(
         return None
     from skisnow.multiscale import FrictionParameters, micro_curves, real_contact
 
+    if curves is not None and (curves.base, curves.snow) != (media.base.name, media.snow.name):
+        raise InputError(
+            f"curves: computed for base {curves.base!r} × snow {curves.snow!r}, but the case has "
+            f"base {media.base.name!r} × snow {media.snow.name!r}"
+        )
     c = curves if curves is not None else micro_curves(media.base, media.snow, cache_dir=cache_dir)
     f = friction if friction is not None else FrictionParameters()
     resolved = f.resolve(temperature_c=media.snow.temperature_c, hardness=c.hardness)
