@@ -9,6 +9,15 @@ import typer
 
 from skisnow._errors import InputError
 from skisnow.cli._app import app, report_converged, report_domain_warnings
+from skisnow.cli._media import (
+    BaseOption,
+    FilmCutoffOption,
+    ShearStrengthOption,
+    SlidingSpeedOption,
+    SnowOption,
+    SnowTemperatureOption,
+    ViscosityOption,
+)
 from skisnow.cli._render import (
     JsonOption,
     ProfileSourceOption,
@@ -21,7 +30,7 @@ from skisnow.cli._render import (
 from skisnow.materials import BASE
 from skisnow.pipeline import DEFAULT_N_POINTS, MODELS, PROFILE_SOURCES, SKI_MODELS
 
-__all__ = ["footprint_records", "patch_record", "zone_record"]
+__all__ = ["footprint_records", "patch_record", "real_rows", "zone_record"]
 
 _ZONES = ("rear", "middle", "front", "total")
 
@@ -94,8 +103,19 @@ def contact(
         ),
     ] = ...,  # type: ignore[assignment]
     snow_modulus_mpa: Annotated[
-        float, typer.Option("--snow-modulus-mpa", help="Elastic modulus of the snow in MPa.")
-    ] = ...,  # type: ignore[assignment]
+        float | None,
+        typer.Option(
+            "--snow-modulus-mpa",
+            help="Elastic modulus of the snow in MPa (or --snow; with --snow it overrides).",
+        ),
+    ] = None,
+    snow: SnowOption = None,
+    snow_temperature_c: SnowTemperatureOption = None,
+    base: BaseOption = None,
+    shear_strength_mpa: ShearStrengthOption = None,
+    viscosity_mpa_s: ViscosityOption = None,
+    sliding_speed_m_s: SlidingSpeedOption = None,
+    film_cutoff_nm: FilmCutoffOption = None,
     model: Annotated[
         str, typer.Option("--model", help="strip (1D, fast) or surface (2D grid across).")
     ] = "strip",
@@ -134,9 +154,16 @@ def contact(
         ),
     ] = None,
 ) -> None:
-    """Apparent contact of a loaded ski with elastic snow: force and moment balance (eq. 2–3)."""
+    """Apparent contact of a loaded ski with elastic snow: force and moment balance (eq. 2–3).
+
+    With --base (a texture) and --snow, also the real contact along the ski, side by side with
+    the apparent one, and the friction proxies with their assumptions.
+    """
+    from skisnow.cli._media import friction_parameters, resolve_base, resolve_snow
     from skisnow.contact import read_profile, write_fields
     from skisnow.pipeline import solve_case
+
+    snow_obj, snow_modulus = resolve_snow(snow, snow_modulus_mpa, temperature_c=snow_temperature_c)
 
     if (ski is None) == (profile is None):
         raise InputError("give exactly one of --ski NAME or --profile FILE")
@@ -168,7 +195,6 @@ def contact(
     for name, quantity, value in (
         ("--mass-kg", "mass", mass_kg),
         ("--load-position-mm", "load_position", load_position_mm),
-        ("--snow-modulus-mpa", "snow_modulus", snow_modulus_mpa),
         ("--width-mm", "width", width_mm),
         ("--base-modulus-mpa", "base_modulus", base_modulus_mpa),
         ("--n-across", "cells_across", n_across),
@@ -184,15 +210,38 @@ def contact(
             f"--profile-source must be one of {', '.join(PROFILE_SOURCES)}, got {profile_source!r}"
         )
     # the case in SI units (the flexible figure draws the rigid route of the same case beside it)
+    texture = resolve_base(base, snow_obj)
+    if texture is not None and base_modulus_mpa != BASE.modulus / 1e6:
+        from skisnow.materials import Material
+        from skisnow.multiscale import make_base
+
+        macro = Material(name="ski base", modulus=base_modulus_mpa * 1e6, poisson=BASE.poisson)
+        texture = make_base(base, material=macro)
     same_case: dict[str, Any] = {
         "mass": mass_kg,
         "load_position": load_position_mm * 1e-3,
-        "snow_modulus": snow_modulus_mpa * 1e6,
         "model": model,
         "n_points": points,
-        "base": base_modulus_mpa * 1e6,
+        "base": base_modulus_mpa * 1e6 if texture is None else texture,
         "n_across": n_across,
     }
+    same_case |= {"snow": snow_obj} if snow_obj is not None else {"snow_modulus": snow_modulus}
+    if texture is not None:
+        same_case["friction"] = friction_parameters(
+            shear_strength_mpa=shear_strength_mpa,
+            viscosity_mpa_s=viscosity_mpa_s,
+            sliding_speed_m_s=sliding_speed_m_s,
+            film_cutoff_nm=film_cutoff_nm,
+        )
+    elif any(
+        v is not None
+        for v in (shear_strength_mpa, viscosity_mpa_s, sliding_speed_m_s, film_cutoff_nm)
+    ):
+        raise InputError(
+            "--shear-strength-mpa, --viscosity-mpa-s, --sliding-speed-m-s and --film-cutoff-nm "
+            "go with --base (the real contact)"
+        )
+    snow_modulus_mpa = snow_modulus * 1e-6
     case = solve_case(
         ski,
         **same_case,
@@ -211,7 +260,11 @@ def contact(
     report_domain_warnings(case.warnings[: len(case.warnings) - (not case.converged)], shown=True)
     if fields_out is not None:
         write_fields(sol, fields_out, zones)
-    if figure is not None:
+    if figure is not None and case.real is not None:
+        from skisnow.plot import plot_real_contact, save_figure
+
+        save_figure(plot_real_contact(case), figure)
+    elif figure is not None:
         from skisnow.plot import plot_contact, save_figure
 
         reference = None
@@ -264,6 +317,15 @@ def contact(
     }
     if case.flexible is not None:
         doc["ski_penetration_um"] = case.flexible.penetration * 1e6
+    if snow_obj is not None:
+        from skisnow.snow import snow_record
+
+        doc["snow"] = snow_record(snow_obj)
+    if case.real is not None:
+        summary = case.real_summary()
+        doc["base"] = {"name": case.texture.name, "source": case.texture.source}
+        doc["real"] = {name: s.as_dict() for name, s in summary.items()}
+        doc["friction"] = case.real.friction_estimate()
     if json_out:
         emit_json(doc)
         return
@@ -318,4 +380,63 @@ def contact(
     console.print(
         f"δ = {doc['translation_um']:.2f} µm, θ = {sol.rotation:.3e} rad, {status} in "
         f"{sol.iterations} iterations (E' = {case.modulus * 1e-6:.1f} MPa)"
+    )
+    if snow_obj is not None:
+        console.print(f"snow {snow_obj.describe()}")
+    if case.real is not None:
+        _print_real(case)
+
+
+def real_rows(summary: dict[str, Any]) -> list[list[Any]]:
+    """Rows of the side-by-side table: apparent and real contact per region and patch."""
+    rows = []
+    for name, s in summary.items():
+        rows.append(
+            [
+                name,
+                s.apparent_area * 1e4,
+                s.load / s.apparent_area * 1e-3 if s.apparent_area > 0 else None,
+                s.real_area * 1e6,
+                s.real_area_grains * 1e6,
+                100 * s.real_fraction,
+                s.mean_separation * 1e6,
+                s.reciprocal_separation,
+                s.dry_force,
+                s.viscous_force,
+            ]
+        )
+    return rows
+
+
+def _print_real(case: Any) -> None:
+    """The real contact of a case beside its apparent contact, then µ with its assumptions."""
+    r = case.real
+    summary = case.real_summary()
+    print_table(
+        f"Apparent and real contact: base {r.base} × snow {r.snow} (regions fixed by the ski, "
+        "then every contact patch)",
+        [
+            "region/patch",
+            "apparent [cm²]",
+            "mean p [kPa]",
+            "real [mm²]",
+            "real, grains [mm²]",
+            "real [%]",
+            "mean sep. [µm]",
+            "∫1/u dA [m]",
+            "τ·A_r [N]",
+            "η·v·∫1/u [N]",
+        ],
+        real_rows(summary),
+    )
+    est = r.friction_estimate()
+    console.print(
+        f"µ = F/W ≈ {est['mu']:.3g} with a dry real contact (τ·A_r {est['dry_force_n']:.3g} N "
+        f"+ viscous {est['viscous_force_n']:.3g} N over W = {est['load_n']:.4g} N), "
+        f"≈ {est['mu_lubricated']:.3g} if the contact spots are sheared through the film"
+    )
+    console.print(f"assumptions: {est['assumptions']}")
+    console.print(
+        "note: the plastic real area is W·s/H whatever the camber (s: the texture's slope "
+        "factor); the camber acts through the separation, its reciprocal and the elastic rims"
     )

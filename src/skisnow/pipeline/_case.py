@@ -388,11 +388,18 @@ def solve_case(
 
 
 def _real(solution: Any, media: Any, notes: list[str], real_kw: dict[str, Any]) -> Any:
-    """The real contact of a solved case (None without a texture), noting held pressures."""
+    """The real contact of a solved case (None without a texture), noting what lies outside a
+    model's range: the ice hardness's temperature range, pressures beyond the micro curves."""
     from skisnow.pipeline._real import case_real_contact
 
+    if media.base is None:
+        return None
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", DomainWarning)
+        _ = media.snow.hardness
+    notes.extend(str(w.message) for w in caught if issubclass(w.category, DomainWarning))
     real = case_real_contact(solution, media, **real_kw)
-    if real is not None and real.beyond.any():
+    if real.beyond.any():
         notes.append(
             f"apparent pressure above the micro curves' last point at {int(real.beyond.sum())} "
             "station(s): the real contact there is held at that point's values"

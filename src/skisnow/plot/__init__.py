@@ -10,6 +10,8 @@ helper writes them, :func:`save_figure` (PNG and SVG by default, no creation dat
   (Figures 8–9);
 * :func:`plot_camber_profiles` — free camber of skis;
 * :func:`topography_figure`, :func:`bearing_figure` — the micro scale;
+* :func:`plot_real_contact`, :func:`plot_micro_curves` — the real contact along the ski and the
+  micro curves of a base × snow;
 * :func:`plot_fleet`, :func:`plot_snow_ranking`, :func:`plot_cycle`, :func:`animate_cycle` —
   the technician workflows (a fleet, a ranking across snow, a load cycle and its animation).
 
@@ -19,6 +21,7 @@ May import: ski, bench, network, contact
 from skisnow.plot._contact import plot_contact
 from skisnow.plot._maps import MAP_KINDS, plot_load_share, plot_zone_map, sweep_figures
 from skisnow.plot._micro import bearing_figure, topography_figure
+from skisnow.plot._multiscale import plot_micro_curves, plot_real_contact
 from skisnow.plot._profiles import plot_camber_profiles
 from skisnow.plot._ski import plot_passport
 from skisnow.plot._style import (
@@ -54,8 +57,10 @@ __all__ = [
     "plot_cycle",
     "plot_fleet",
     "plot_load_share",
+    "plot_micro_curves",
     "plot_pairs",
     "plot_passport",
+    "plot_real_contact",
     "plot_snow_ranking",
     "plot_zone_map",
     "save_figure",
