@@ -36,7 +36,7 @@ LoadPositionGridOption = Annotated[
     str, typer.Option("--load-position-mm", help="Load positions x_m (mm), + toward tip.")
 ]
 SnowModulusGridOption = Annotated[
-    str, typer.Option("--snow-modulus-mpa", help="Snow moduli E_counter (MPa).")
+    str | None, typer.Option("--snow-modulus-mpa", help="Snow moduli E_counter (MPa).")
 ]
 NPointsOption = Annotated[
     int,

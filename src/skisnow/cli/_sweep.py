@@ -24,7 +24,42 @@ from skisnow.cli._render import (
     print_table,
     progress_bar,
 )
+from skisnow.cli._media import (
+    BaseOption,
+    FilmCutoffOption,
+    ShearStrengthOption,
+    SlidingSpeedOption,
+    SnowOption,
+    SnowTemperatureOption,
+    ViscosityOption,
+)
 from skisnow.cli._ski import resolve_profile_source
+
+#: The sweep's modulus axis when neither --snow-modulus-mpa nor --snow is given.
+DEFAULT_SWEEP_MODULI = "20:400:20"
+
+
+def sweep_snow(snow: str | None, grid: str | None, temperature_c: float | None, default: str):
+    """(Snow or None, modulus-grid text) by the snow options' rule: --snow-modulus-mpa is the
+    axis when given; with only --snow, the axis is its modulus."""
+    from skisnow.cli._media import resolve_snow
+
+    s, _ = resolve_snow(snow, None, temperature_c=temperature_c, required=False)
+    if grid is None:
+        grid = default if s is None else f"{s.modulus / 1e6:.12g}"
+    return s, grid
+
+
+def friction_overrides(**values: float | None) -> tuple[tuple[str, float], ...]:
+    """The friction options as the sweep's (name, SI value) overrides."""
+    from skisnow.cli._media import friction_parameters
+
+    f = friction_parameters(**values)
+    return tuple(
+        (k, float(getattr(f, k)))
+        for k in ("shear_strength", "viscosity", "sliding_speed", "film_cutoff")
+        if getattr(f, k) is not None
+    )
 
 
 @app.command()
@@ -35,7 +70,14 @@ def sweep(
     out: Annotated[Path, typer.Option("--out", help="Zarr store (resumed if it exists).")],
     mass_kg: MassGridOption = "5:130:1",
     load_position_mm: LoadPositionGridOption = "-120",
-    snow_modulus_mpa: SnowModulusGridOption = "20:400:20",
+    snow_modulus_mpa: SnowModulusGridOption = None,  # type: ignore[assignment]
+    snow: SnowOption = None,
+    snow_temperature_c: SnowTemperatureOption = None,
+    base: BaseOption = None,
+    shear_strength_mpa: ShearStrengthOption = None,
+    viscosity_mpa_s: ViscosityOption = None,
+    sliding_speed_m_s: SlidingSpeedOption = None,
+    film_cutoff_nm: FilmCutoffOption = None,
     scheduler: SchedulerOption = None,
     workers: DaskWorkersOption = None,
     model: Annotated[str, typer.Option("--model", help="Contact model: strip or surface.")] = (
@@ -52,6 +94,8 @@ def sweep(
     """Sweep the contact over ski × mass × load position × snow modulus into a Zarr store.
 
     Interrupted sweeps resume: run the same command again and only missing chunks are computed.
+    With --base and --snow the real contact per zone and point is stored too (default modulus
+    axis 20:400:20 MPa; with --snow alone, its modulus).
     """
     from skisnow._checks import check_grid_points, check_option_values
     from skisnow.constants import MM, MPA
@@ -75,6 +119,27 @@ def sweep(
         raise InputError(
             f"--profile-source: {profile_source!r} is not one of {', '.join(PROFILE_SOURCES)}, auto"
         )
+    import json
+
+    from skisnow.cli._media import resolve_base
+    from skisnow.snow import snow_record
+
+    snow_obj, snow_modulus_mpa = sweep_snow(
+        snow, snow_modulus_mpa, snow_temperature_c, DEFAULT_SWEEP_MODULI
+    )
+    texture = resolve_base(base, snow_obj)
+    real: dict = {}
+    if texture is not None:
+        real = {
+            "base": base,
+            "snow": json.dumps(snow_record(snow_obj), sort_keys=True),
+            "friction": friction_overrides(
+                shear_strength_mpa=shear_strength_mpa,
+                viscosity_mpa_s=viscosity_mpa_s,
+                sliding_speed_m_s=sliding_speed_m_s,
+                film_cutoff_nm=film_cutoff_nm,
+            ),
+        }
     spec = SweepSpec(
         skis=tuple(ski),
         masses=check_option_values(parse_values(mass_kg, name="--mass-kg"), "mass", "--mass-kg"),
@@ -94,7 +159,10 @@ def sweep(
         profile_source=resolve_profile_source(profile_source, ski),
         n_points=n_points,
         ski_model=ski_model,
+        **real,
     )
+    if spec.base:  # the micro curves once, here (the workers read them from the cache)
+        spec.micro_curves()
     n_chunks = len(spec.chunks())
     # the bar starts with the first finished chunk (not before the store checks)
     bar = progress_bar(f"sweep {out.name}", transient=False)

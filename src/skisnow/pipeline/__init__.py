@@ -32,6 +32,7 @@ from skisnow.pipeline._profiles import (
     shipped_twin,
     stations,
 )
+from skisnow.pipeline._real import station_masks, zone_station_masks
 
 _LAZY = dict.fromkeys(
     ("MAP_MASSES", "MAP_MODULI", "STANDARD_SNOWS", "SkiStudy", "standard_cases", "study_ski"),
@@ -57,6 +58,8 @@ __all__ = [
     "shipped_twin",
     "solve_case",
     "standard_cases",
+    "station_masks",
     "stations",
     "study_ski",
+    "zone_station_masks",
 ]

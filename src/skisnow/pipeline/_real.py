@@ -18,7 +18,13 @@ import numpy as np
 
 from skisnow._errors import InputError
 
-__all__ = ["Media", "case_real_contact", "resolve_media", "station_masks"]
+__all__ = [
+    "Media",
+    "case_real_contact",
+    "resolve_media",
+    "station_masks",
+    "zone_station_masks",
+]
 
 
 @dataclass(frozen=True)
@@ -139,3 +145,19 @@ def station_masks(
         m[i : j + 1] = True
         masks[f"patch {k}"] = m
     return masks
+
+
+def zone_station_masks(case: Any, names: tuple[str, ...]) -> dict[str, np.ndarray]:
+    """Station masks of contact zones (the sweep's zone dimension): the stations inside a
+    zone's contact intervals; ``total`` is the whole ski."""
+    x = np.asarray(case.solution.x)
+    out: dict[str, np.ndarray] = {}
+    for name in names:
+        if name == "total":
+            out[name] = np.ones(x.shape, dtype=bool)
+            continue
+        m = np.zeros(x.shape, dtype=bool)
+        for lo, hi in case.zones[name].intervals:
+            m |= (x >= lo) & (x <= hi)
+        out[name] = m
+    return out

@@ -11,7 +11,14 @@ sizes (micro), density → modulus; presets for the snow types a technician name
   :func:`snow_record`.
 """
 
-from skisnow.snow._file import SNOW_FILE_KEYS, get_snow, read_snow, snow_record, write_snow
+from skisnow.snow._file import (
+    SNOW_FILE_KEYS,
+    get_snow,
+    read_snow,
+    snow_from_record,
+    snow_record,
+    write_snow,
+)
 from skisnow.snow._presets import SNOW_ALIASES, SNOW_PRESETS, snow_preset
 from skisnow.snow._snow import DENSITY_RELATIONS, Snow, gamma_grains, modulus_from_density
 
@@ -25,6 +32,7 @@ __all__ = [
     "get_snow",
     "modulus_from_density",
     "read_snow",
+    "snow_from_record",
     "snow_preset",
     "snow_record",
     "write_snow",

@@ -23,7 +23,14 @@ from skisnow._errors import FileFormatError, InputError
 from skisnow.snow._presets import snow_preset
 from skisnow.snow._snow import DENSITY_RELATIONS, Snow, gamma_grains, modulus_from_density
 
-__all__ = ["SNOW_FILE_KEYS", "get_snow", "read_snow", "snow_record", "write_snow"]
+__all__ = [
+    "SNOW_FILE_KEYS",
+    "get_snow",
+    "read_snow",
+    "snow_from_record",
+    "snow_record",
+    "write_snow",
+]
 
 #: Keys a snow file may hold, with what they mean.
 SNOW_FILE_KEYS: dict[str, str] = {
@@ -77,6 +84,14 @@ def read_snow(path: str | Path) -> Snow:
         raise
     except InputError as exc:
         raise FileFormatError(f"{where}: {exc}") from None
+
+
+def snow_from_record(doc: dict[str, Any], *, where: str = "(snow record)") -> Snow:
+    """A :class:`Snow` from a snow-file document (:func:`snow_record`'s inverse)."""
+    unknown = sorted(set(doc) - set(SNOW_FILE_KEYS))
+    if unknown:
+        raise FileFormatError(f"{where}: unknown key(s) {unknown}")
+    return _from_doc(doc, where, default_name="snow")
 
 
 def _from_doc(doc: dict[str, Any], where: str, *, default_name: str) -> Snow:

@@ -32,7 +32,15 @@ from skisnow.sweep._run import (
     prepare_store,
     run_sweep,
 )
-from skisnow.sweep._store import FIELD_VARIABLES, VARIABLES, open_sweep, read_spec, save_netcdf
+from skisnow.sweep._store import (
+    FIELD_VARIABLES,
+    REAL_FIELD_VARIABLES,
+    REAL_VARIABLES,
+    VARIABLES,
+    open_sweep,
+    read_spec,
+    save_netcdf,
+)
 
 
 def __getattr__(name: str):  # the physics chunk function imports the solvers only when asked
@@ -49,6 +57,8 @@ __all__ = [
     "PAPER_BASE_MODULUS",
     "PAPER_POISSON",
     "PROFILE_SOURCES",
+    "REAL_FIELD_VARIABLES",
+    "REAL_VARIABLES",
     "VARIABLES",
     "ZONES",
     "ChunkFunction",

@@ -75,6 +75,14 @@ class SweepSpec:
             fields along the ski on ``n`` display stations (block means of the ``n_points``
             cells, ``n`` dividing ``n_points``): pressure, ski base, snow surface, zone of each
             station (what the explorer page shows, :mod:`skisnow.explore`).
+        base: ``""`` (default: no real contact) or a base texture (``'S1'``..``'S5'``,
+            ``'smooth'``, a topography file): the sweep then also stores the real contact per
+            zone and point (:data:`skisnow.sweep.REAL_VARIABLES`), from the micro curves of
+            this base × ``snow`` (computed once, in the client, and cached).
+        snow: the snow of the real contact as a snow-file JSON text (``skisnow.snow.
+            snow_record``); its modulus is replaced by each of ``snow_moduli``.
+        friction: overrides of the friction parameters, ``(name, SI value)`` pairs of
+            :class:`skisnow.multiscale.FrictionParameters` (``()``: the cited defaults).
     """
 
     skis: tuple[str, ...]
@@ -92,6 +100,9 @@ class SweepSpec:
     ski_files: tuple[tuple[str, str], ...] = ()
     ski_model: str = "rigid"
     field_stations: int = 0
+    base: str = ""
+    snow: str = ""
+    friction: tuple[tuple[str, float], ...] = ()
 
     def __post_init__(self) -> None:
         from skisnow.ski import SHIPPED_SKIS, get_ski, ski_to_json
@@ -157,6 +168,39 @@ class SweepSpec:
                 f"{self.n_points}, got {n!r}"
             )
         object.__setattr__(self, "field_stations", int(n))
+        if self.base and not self.snow:
+            raise InputError("base: the real contact needs a snow (a snow-file JSON text)")
+        object.__setattr__(self, "friction", tuple((str(k), float(v)) for k, v in self.friction))
+        if self.base:
+            self.friction_parameters()  # validated now, not on the workers
+            self.snow_definition()
+
+    def snow_definition(self) -> Any:  # a skisnow.snow.Snow
+        """The :class:`~skisnow.snow.Snow` of the real contact (``None`` without ``snow``)."""
+        return _snow_from_text(self.snow) if self.snow else None
+
+    def texture(self) -> Any:  # a skisnow.multiscale.Base
+        """The base texture of the real contact (``None`` without ``base``)."""
+        if not self.base:
+            return None
+        from skisnow.multiscale import make_base
+
+        return make_base(self.base)
+
+    def friction_parameters(self) -> Any:
+        """:class:`~skisnow.multiscale.FrictionParameters` with the spec's overrides."""
+        from skisnow.multiscale import FrictionParameters
+
+        try:
+            return FrictionParameters(**dict(self.friction))
+        except TypeError as exc:
+            raise InputError(f"friction: {exc}") from None
+
+    def micro_curves(self) -> Any:
+        """The micro curves of ``base`` × ``snow`` (computed once and cached on disk)."""
+        from skisnow.multiscale import micro_curves
+
+        return micro_curves(self.texture(), self.snow_definition())
 
     # ----------------------------------------------------------------------------------------
     def ski(self, label: str) -> Any:  # a skisnow.ski.Ski (imported lazily)
@@ -206,7 +250,20 @@ class SweepSpec:
         for key in ("skis", "masses", "load_positions", "snow_moduli", "zones"):
             d[key] = tuple(d[key])
         d["ski_files"] = tuple(tuple(pair) for pair in d.get("ski_files", ()))
+        d["friction"] = tuple(tuple(pair) for pair in d.get("friction", ()))
         return cls(**d)
+
+
+@lru_cache(maxsize=8)
+def _snow_from_text(text: str) -> Any:
+    import json as _json
+
+    from skisnow.snow import snow_from_record
+
+    try:
+        return snow_from_record(_json.loads(text), where="(sweep snow)")
+    except ValueError as exc:
+        raise InputError(f"snow: {exc}") from None
 
 
 @lru_cache(maxsize=32)

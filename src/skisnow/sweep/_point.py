@@ -69,15 +69,23 @@ def solve_point(
     """
     from skisnow.pipeline import solve_case
 
+    if spec.base:  # the real contact: the textured base and the snow at this modulus
+        media: dict[str, Any] = {
+            "base": spec.texture(),
+            "snow": spec.snow_definition().replace(modulus=float(snow_modulus)),
+            "curves": spec.micro_curves(),
+            "friction": spec.friction_parameters(),
+        }
+    else:
+        media = {"base": spec.base_modulus, "snow_modulus": float(snow_modulus)}
     return solve_case(
         spec.ski(ski_name) if ski is None else ski,
         mass=float(mass),
         load_position=float(load_position),
-        snow_modulus=float(snow_modulus),
         model=spec.model,
         profile_source=spec.profile_source,
         n_points=spec.n_points,
-        base=spec.base_modulus,
+        **media,
         poisson=spec.poisson,
         start=initial_pressure,
         profile=None if spec.ski_model == "flexible" else profile,
@@ -126,6 +134,14 @@ def contact_chunk(
             out[name] = np.full((n_m, n_f), np.nan)
         out["zone_code"] = np.zeros((n_m, n_f), dtype=np.int8)
         out["x_mm"] = block_mean(stations(ski, spec.n_points), n_f) * 1e3
+    if spec.base:
+        from skisnow.sweep._store import REAL_FIELD_VARIABLES, REAL_VARIABLES
+
+        for name, var in REAL_VARIABLES.items():
+            out[name] = np.full((n_m, n_z) if "zone" in var.dims else n_m, np.nan)
+        if n_f:
+            for name in REAL_FIELD_VARIABLES:
+                out[name] = np.full((n_m, n_f), np.nan)
     previous: np.ndarray | None = None
     for a, mass in enumerate(spec.masses):
         try:
@@ -162,5 +178,37 @@ def contact_chunk(
         if n_f:
             for name, value in station_fields(solution, zones, n_f).items():
                 out[name][a] = value
+        if case.real is not None:
+            _real_point(out, a, case, spec.zones, n_f)
         previous = solution.pressure if (solution.converged and spec.warm_start) else None
     return out
+
+
+def _real_point(out: dict[str, np.ndarray], a: int, case: Any, zones: tuple[str, ...],
+                n_f: int) -> None:  # fmt: skip
+    """The real contact of one point: per zone (its contact stations; ``total`` the whole ski)
+    and, with fields, the real fraction and separation on the display stations."""
+    from skisnow.pipeline import zone_station_masks
+
+    real = case.real
+    summary = real.summarize(zone_station_masks(case, zones))
+    for q, name in enumerate(zones):
+        r = summary[name]
+        out["real_area_mm2"][a, q] = r.real_area * 1e6
+        out["real_area_grains_mm2"][a, q] = r.real_area_grains * 1e6
+        out["real_fraction"][a, q] = r.real_fraction
+        out["mean_separation_um"][a, q] = r.mean_separation * 1e6
+        out["reciprocal_separation_m"][a, q] = r.reciprocal_separation
+        out["dry_force_n"][a, q] = r.dry_force
+        out["viscous_force_n"][a, q] = r.viscous_force
+    est = real.friction_estimate()
+    out["mu"][a] = est["mu"]
+    out["mu_lubricated"][a] = est["mu_lubricated"]
+    if n_f:
+        from skisnow.sweep._fields import block_mean
+
+        app = block_mean(real.apparent_area, n_f)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            frac = np.where(app > 0, block_mean(real.real_area, n_f) / app, np.nan)
+        out["real_fraction_percent"][a] = 100 * frac
+        out["separation_um"][a] = block_mean(real.mean_separation, n_f) * 1e6

@@ -96,10 +96,47 @@ FIELD_VARIABLES: dict[str, _Var] = {
 }
 
 
+#: The real contact a sweep stores when ``spec.base`` names a texture (per zone: the zone's
+#: contact stations; ``total``: the whole ski, the gaps beside the patches included).
+REAL_VARIABLES: dict[str, _Var] = {
+    "real_area_mm2": _Var(DIMS, "float64", "mm2", "real contact area (flat-ice model)"),
+    "real_area_grains_mm2": _Var(
+        DIMS, "float64", "mm2", "real contact area (bearing model of ice grains)"
+    ),
+    "real_fraction": _Var(DIMS, "float64", "1", "real over apparent contact area"),
+    "mean_separation_um": _Var(
+        DIMS, "float64", "um", "mean base-snow separation over the apparent contact"
+    ),
+    "reciprocal_separation_m": _Var(
+        DIMS, "float64", "m", "total reciprocal separation, integral of 1/u dA"
+    ),
+    "dry_force_n": _Var(DIMS, "float64", "N", "dry/adhesive friction proxy tau * A_r"),
+    "viscous_force_n": _Var(DIMS, "float64", "N", "viscous friction proxy eta * v * int 1/u dA"),
+    "mu": _Var(POINT_DIMS, "float64", "1", "(tau A_r + eta v int 1/u dA) / W, dry real contact"),
+    "mu_lubricated": _Var(
+        POINT_DIMS, "float64", "1", "(eta v A_r / u_c + eta v int 1/u dA) / W, lubricated spots"
+    ),
+}
+
+
+#: Real-contact fields along the ski (with ``field_stations`` and a base): the explorer's curves.
+REAL_FIELD_VARIABLES: dict[str, _Var] = {
+    "real_fraction_percent": _Var(
+        FIELD_DIMS, "float32", "percent", "real over apparent area where the ski bears"
+    ),
+    "separation_um": _Var(FIELD_DIMS, "float32", "um", "mean base-snow separation"),
+}
+
+
 def variables(spec: SweepSpec) -> dict[str, _Var]:
-    """The variables of a sweep's store: :data:`VARIABLES`, and :data:`FIELD_VARIABLES` when
-    the spec asks for fields."""
-    return VARIABLES | FIELD_VARIABLES if spec.field_stations else VARIABLES
+    """The variables of a sweep's store: :data:`VARIABLES`, :data:`FIELD_VARIABLES` when the
+    spec asks for fields, :data:`REAL_VARIABLES` when it names a base texture."""
+    out = VARIABLES | FIELD_VARIABLES if spec.field_stations else VARIABLES
+    if spec.base:
+        out = out | REAL_VARIABLES
+        if spec.field_stations:
+            out = out | REAL_FIELD_VARIABLES
+    return out
 
 
 def chunk_shapes(spec: SweepSpec) -> dict[str, tuple[int, ...]]:
