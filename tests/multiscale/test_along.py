@@ -98,7 +98,7 @@ def test_proxies_are_their_stated_formulas(setup) -> None:
     f = r.friction
     assert f.viscosity == pytest.approx(water_viscosity(-2.0))
     assert f.shear_strength == pytest.approx(0.3 * setup["snow"].hardness)
-    assert t.dry_force == pytest.approx(f.shear_strength * t.real_area)
+    assert t.dry_force == pytest.approx(f.shear_strength * t.real_area_grains)
     assert t.viscous_force == pytest.approx(f.viscosity * f.sliding_speed * t.reciprocal_separation)
     est = r.friction_estimate()
     assert est["mu"] == pytest.approx((t.dry_force + t.viscous_force) / (60 * STANDARD_GRAVITY))

@@ -142,7 +142,7 @@ def friction_parameters(
     viscosity_mpa_s: float | None,
     sliding_speed_m_s: float | None,
     film_cutoff_nm: float | None,
-    area_model: str = "flat-ice",
+    area_model: str = "grains",
 ) -> Any:
     """:class:`~skisnow.multiscale.FrictionParameters` from the options (field → SI)."""
     from skisnow.multiscale import FrictionParameters

@@ -9,6 +9,15 @@ import typer
 
 from skisnow._errors import InputError
 from skisnow.cli._app import app
+from skisnow.cli._media import (
+    BaseOption,
+    FilmCutoffOption,
+    ShearStrengthOption,
+    SlidingSpeedOption,
+    SnowOption,
+    SnowTemperatureOption,
+    ViscosityOption,
+)
 from skisnow.cli._render import (
     DaskWorkersOption,
     JsonOption,
@@ -23,15 +32,6 @@ from skisnow.cli._render import (
     err_console,
     print_table,
     progress_bar,
-)
-from skisnow.cli._media import (
-    BaseOption,
-    FilmCutoffOption,
-    ShearStrengthOption,
-    SlidingSpeedOption,
-    SnowOption,
-    SnowTemperatureOption,
-    ViscosityOption,
 )
 from skisnow.cli._ski import resolve_profile_source
 

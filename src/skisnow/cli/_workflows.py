@@ -18,6 +18,16 @@ from skisnow._atomic import atomic_path
 from skisnow._errors import InputError
 from skisnow._values import parse_values
 from skisnow.cli._app import EXIT_INPUT, app, report_converged, run_annotations
+from skisnow.cli._media import (
+    FilmCutoffOption,
+    ShearStrengthOption,
+    SlidingSpeedOption,
+    SnowOption,
+    SnowTemperatureOption,
+    ViscosityOption,
+    friction_parameters,
+    resolve_snow,
+)
 from skisnow.cli._render import (
     JsonOption,
     _jsonable,
@@ -28,7 +38,11 @@ from skisnow.cli._render import (
     progress_bar,
 )
 
-_SNOW = typer.Option(..., "--snow-modulus-mpa", help="Young's modulus of the snow in MPa.")
+_SNOW = typer.Option(
+    None,
+    "--snow-modulus-mpa",
+    help="Young's modulus of the snow in MPa (or --snow; with --snow it overrides).",
+)
 _BODY = typer.Option(..., "--body-mass-kg", help="The athlete's body mass in kg.")
 _POS = typer.Option(
     -120.0,
@@ -57,6 +71,18 @@ def write_csv(path: Path, records: Sequence[dict[str, Any]]) -> Path:
 def _check_positive(name: str, value: float) -> None:
     if not (np.isfinite(value) and value > 0):
         raise InputError(f"{name} must be a positive number, got {value:g}")
+
+
+def friction_assumptions(friction: object, snow: object) -> str:
+    """The friction parameters as a sentence (resolved on ``snow``)."""
+    import warnings
+
+    from skisnow._errors import DomainWarning
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", DomainWarning)
+        h = snow.hardness  # type: ignore[attr-defined]
+    return friction.resolve(temperature_c=snow.temperature_c, hardness=h).assumptions()  # type: ignore[attr-defined]
 
 
 def _report_failures(failures: Sequence[tuple[str, str]]) -> None:
@@ -110,7 +136,29 @@ def comparison_rows(
 def compare(
     skis: Annotated[list[str], typer.Argument(help="Skis: shipped names, ski files, bench files.")],
     body_mass_kg: float = _BODY,
-    snow_modulus_mpa: float = _SNOW,
+    snow_modulus_mpa: float | None = _SNOW,
+    snow: SnowOption = None,
+    snow_temperature_c: SnowTemperatureOption = None,
+    base: Annotated[
+        list[str] | None,
+        typer.Option(
+            "--base",
+            help="Base texture(s) to rank with the skis (repeat: --base S1 --base S3); S1..S5, "
+            "smooth or a topography file; needs --snow.",
+        ),
+    ] = None,
+    proxy: Annotated[
+        str,
+        typer.Option(
+            "--proxy",
+            help="Real-contact proxy that ranks skis × bases: mu, mu-lubricated, viscous, dry, "
+            "real-area, real-area-flat, reciprocal.",
+        ),
+    ] = "viscous",
+    shear_strength_mpa: ShearStrengthOption = None,
+    viscosity_mpa_s: ViscosityOption = None,
+    sliding_speed_m_s: SlidingSpeedOption = None,
+    film_cutoff_nm: FilmCutoffOption = None,
     ski_model: str = _MODEL,
     load_position_mm: float = _POS,
     criterion: Annotated[
@@ -137,10 +185,22 @@ def compare(
     A ski that cannot be read is named on stderr and left out; the others are compared (exit 2,
     bad input, when any was left out).
     """
+    from skisnow.multiscale import PROXIES
     from skisnow.workflows import CRITERIA, compare_fleet, rank_across_snow
 
     _check_positive("--body-mass-kg", body_mass_kg)
-    _check_positive("--snow-modulus-mpa", snow_modulus_mpa)
+    snow_obj, e = resolve_snow(snow, snow_modulus_mpa, temperature_c=snow_temperature_c)
+    snow_modulus_mpa = e * 1e-6
+    if base and snow_obj is None:
+        raise InputError("--base: the real contact needs --snow (a preset or a snow file)")
+    if proxy not in PROXIES:
+        raise InputError(f"--proxy must be one of {', '.join(PROXIES)}, got {proxy!r}")
+    friction = friction_parameters(
+        shear_strength_mpa=shear_strength_mpa,
+        viscosity_mpa_s=viscosity_mpa_s,
+        sliding_speed_m_s=sliding_speed_m_s,
+        film_cutoff_nm=film_cutoff_nm,
+    )
     if criterion not in CRITERIA:
         raise InputError(f"--criterion must be one of {', '.join(CRITERIA)}, got {criterion!r}")
     moduli = parse_values(snow_range_mpa, name="--snow-range-mpa")
@@ -186,11 +246,26 @@ def compare(
         for lo, hi, before, after in snow.changes
     ]
     notes = [e.route_note for e in cmp.entries if e.route_note]
+    real_records, real_ranking = [], []
+    if base:
+        from skisnow.multiscale import rank_real, real_table
+
+        with progress_bar("real contact (micro curves per base)", disable=json_out):
+            real_records = real_table(
+                {e.ski.label: e.cases["full"].solution for e in cmp.entries},
+                list(base),
+                snow_obj,
+                friction=friction,
+            )
+        real_ranking = rank_real(real_records, proxy)
     files: list[str] = []
     if out is not None:
         from skisnow.plot import plot_fleet, plot_snow_ranking, save_figure
 
         files += [str(write_csv(out / "comparison.csv", records))]
+        if real_records:
+            files += [str(write_csv(out / "real_contact.csv", real_records))]
+            files += [str(write_csv(out / "real_ranking.csv", real_ranking))]
         files += [str(write_csv(out / "ranking.csv", ranking))]
         files += [str(write_csv(out / "snow_ranking.csv", snow_records))]
         files += [str(p) for p in save_figure(plot_fleet(cmp), out / "fleet")]
@@ -211,6 +286,15 @@ def compare(
         "ranking": ranking,
         "snow_ranking": snow_records,
         "order_changes": changes,
+        "real_contact": real_records,
+        "real_ranking": {
+            "proxy": proxy,
+            "description": PROXIES[proxy].description,
+            "ranking": real_ranking,
+        }
+        if real_records
+        else None,
+        "snow": None if snow_obj is None else snow_obj.describe(),
         "notes": notes,
         "failures": [{"ski": s, "error": m} for s, m in cmp.failures],
         "files": files,
@@ -241,6 +325,29 @@ def compare(
             ["snow [MPa]", "order (best first)"],
             [[rec["snow_modulus_mpa"], rec["order"]] for rec in snow_records],
         )
+        if real_records:
+            p = PROXIES[proxy]
+            print_table(
+                f"Skis × bases at {body_mass_kg:g} kg on {snow_obj.name} snow by {p.name} "
+                f"({p.better} is better)",
+                ["rank", "ski", "base", p.column, "real [mm²]", "viscous [N]", "µ dry", "µ lub."],
+                [
+                    [
+                        r["rank"],
+                        r["ski"],
+                        r["base"],
+                        r[p.column],
+                        *next(
+                            [q["real_area_mm2"], q["viscous_force_n"], q["mu"], q["mu_lubricated"]]
+                            for q in real_records
+                            if (q["ski"], q["base"]) == (r["ski"], r["base"])
+                        ),
+                    ]
+                    for r in real_ranking
+                ],
+            )
+            console.print(f"proxy: {p.description}")
+            console.print(f"assumptions: {friction_assumptions(friction, snow_obj)}")
         if not changes:
             console.print("the order does not change over the snow range")
         for c in changes:
@@ -262,7 +369,8 @@ def compare(
 def pairs(
     skis: Annotated[list[str], typer.Argument(help="Skis: shipped names, ski files, bench files.")],
     body_mass_kg: float = _BODY,
-    snow_modulus_mpa: float = _SNOW,
+    snow_modulus_mpa: float | None = _SNOW,
+    snow: SnowOption = None,
     load_position_mm: float = _POS,
     points: int = _POINTS,
     out: Path | None = _OUT,
@@ -278,7 +386,7 @@ def pairs(
     )
 
     _check_positive("--body-mass-kg", body_mass_kg)
-    _check_positive("--snow-modulus-mpa", snow_modulus_mpa)
+    snow_modulus_mpa = resolve_snow(snow, snow_modulus_mpa)[1] * 1e-6
     with progress_bar("pairs", disable=json_out) as update:
         result = match_pairs(
             skis,

@@ -18,8 +18,20 @@ import typer
 from skisnow._atomic import atomic_path
 from skisnow._errors import InputError
 from skisnow.cli._app import app, report_converged, run_annotations
+from skisnow.cli._media import (
+    BaseOption,
+    FilmCutoffOption,
+    ShearStrengthOption,
+    SlidingSpeedOption,
+    SnowOption,
+    SnowTemperatureOption,
+    ViscosityOption,
+    friction_parameters,
+    resolve_base,
+    resolve_snow,
+)
 from skisnow.cli._render import JsonOption, console, emit_json, print_table, progress_bar
-from skisnow.cli._workflows import _MODEL, _OUT, _POINTS, _SNOW, _check_positive, write_csv
+from skisnow.cli._workflows import _MODEL, _OUT, _POINTS, _SNOW, write_csv
 
 
 def cycle_records(ds: Any) -> list[dict[str, Any]]:
@@ -39,9 +51,32 @@ def cycle_records(ds: Any) -> list[dict[str, Any]]:
             rec[f"{zone}_peak_pressure_kpa"] = float(ds["max_pressure"].values[i, j] * 1e-3)
             rec[f"{zone}_load_share"] = float(ds["load_share"].values[i, j])
         rec["kick_contact"] = bool(ds["kick_contact"].values[i])
+        if "viscous_force" in ds:
+            rec["real_area_mm2"] = float(ds["real_area"].values[i] * 1e6)
+            rec["reciprocal_separation_m"] = float(ds["reciprocal_separation"].values[i])
+            rec["dry_force_n"] = float(ds["dry_force"].values[i])
+            rec["viscous_force_n"] = float(ds["viscous_force"].values[i])
+            rec["lubricated_force_n"] = float(ds["lubricated_force"].values[i])
         rec["converged"] = bool(ds["converged"].values[i])
         recs.append(rec)
     return recs
+
+
+def real_record(ds: Any) -> dict[str, Any]:
+    """The friction proxies over the cycle in field units (:func:`real_cycle_summary`)."""
+    from skisnow.workflows import real_cycle_summary
+
+    s = real_cycle_summary(ds)
+    return {
+        "mean_real_area_mm2": s["mean_real_area"] * 1e6,
+        "mean_dry_force_n": s["mean_dry_force"],
+        "mean_viscous_force_n": s["mean_viscous_force"],
+        "mean_lubricated_force_n": s["mean_lubricated_force"],
+        "viscous_impulse_ns": s["viscous_force_impulse"],
+        "load_impulse_ns": s["load_impulse"],
+        "mu": s["mu"],
+        "mu_lubricated": s["mu_lubricated"],
+    }
 
 
 def summary_record(ds: Any) -> dict[str, Any]:
@@ -68,7 +103,14 @@ def summary_record(ds: Any) -> dict[str, Any]:
 @app.command()
 def cycle(
     ski: Annotated[str, typer.Argument(help="A shipped ski name, a ski file or a bench file.")],
-    snow_modulus_mpa: float = _SNOW,
+    snow_modulus_mpa: float | None = _SNOW,
+    snow: SnowOption = None,
+    snow_temperature_c: SnowTemperatureOption = None,
+    base: BaseOption = None,
+    shear_strength_mpa: ShearStrengthOption = None,
+    viscosity_mpa_s: ViscosityOption = None,
+    sliding_speed_m_s: SlidingSpeedOption = None,
+    film_cutoff_nm: FilmCutoffOption = None,
     load_history: Annotated[
         Path | None,
         typer.Option(
@@ -127,7 +169,15 @@ def cycle(
 
     if (load_history is None) == (template is None):
         raise InputError("give exactly one of --load-history FILE or --template NAME")
-    _check_positive("--snow-modulus-mpa", snow_modulus_mpa)
+    snow_obj, e = resolve_snow(snow, snow_modulus_mpa, temperature_c=snow_temperature_c)
+    snow_modulus_mpa = e * 1e-6
+    texture = resolve_base(base, snow_obj)
+    friction = friction_parameters(
+        shear_strength_mpa=shear_strength_mpa,
+        viscosity_mpa_s=viscosity_mpa_s,
+        sliding_speed_m_s=sliding_speed_m_s,
+        film_cutoff_nm=film_cutoff_nm,
+    )
     if ski_model not in ("rigid", "flexible"):
         raise InputError(f"--ski-model must be rigid or flexible, got {ski_model!r}")
     if not (np.isfinite(animation_speed) and animation_speed > 0):
@@ -176,6 +226,9 @@ def cycle(
                 keep_fields=animation is not None,
                 ski_model=ski_model,  # type: ignore[arg-type]
                 progress=update,
+                base=texture,
+                snow=snow_obj,
+                friction=friction,
             )
         report_converged(bool(ds["converged"].all()))
         results.append((name, ds))
@@ -204,6 +257,7 @@ def cycle(
                 animate_cycle(ds, tmp, speed=animation_speed, progress=update)
             files.append(str(target))
     summaries = [{"cycle": name, **summary_record(ds)} for name, ds in results]
+    real = [{"cycle": name, **real_record(ds)} for name, ds in results if "viscous_force" in ds]
     notes = [ds.attrs["route_note"] for _, ds in results if ds.attrs["route_note"]]
     if out is not None:
         files.append(str(write_csv(out / "cycle_summary.csv", summaries)))
@@ -214,6 +268,8 @@ def cycle(
                 "ski": results[0][1].attrs["ski"],
                 "snow_modulus_mpa": snow_modulus_mpa,
                 "summaries": summaries,
+                "real_contact": real,
+                "friction_assumptions": results[0][1].attrs.get("friction", ""),
                 "notes": notes,
                 "sources": {name: ds.attrs["history_source"] for name, ds in results},
                 "frames": {name: cycle_records(ds) for name, ds in results},
@@ -254,6 +310,18 @@ def cycle(
             for s in summaries
         ],
     )
+    if real:
+        print_table(
+            f"Friction proxies over the stride: base {results[0][1].attrs['base']} × snow "
+            f"{results[0][1].attrs['snow']} (time means over the cycle)",
+            ["cycle", "real area [mm²]", "τ·A_r [N]", "η·v·∫1/u [N]", "µ dry", "µ lubricated"],
+            [
+                [r["cycle"], r["mean_real_area_mm2"], r["mean_dry_force_n"],
+                 r["mean_viscous_force_n"], r["mu"], r["mu_lubricated"]]
+                for r in real
+            ],
+        )  # fmt: skip
+        console.print(f"assumptions: {results[0][1].attrs['friction']}")
     for name, ds in results:
         if ds.attrs["history_source"] and template is not None:
             console.print(f"{name}: {ds.attrs['history_source']}")

@@ -105,15 +105,17 @@ class FrictionParameters:
     film_cutoff
         u_c [m] (default 0.1 µm).
     area_model
-        Real area of the dry term: ``'flat-ice'`` (elastic–plastic, default) or ``'grains'``
-        (bearing model).
+        Real area of the dry term: ``'grains'`` (default: the bearing model, the base texture
+        against the snow's grains, A_r = (p/H)·s) or ``'flat-ice'`` (the elastic–plastic
+        contact with a flat ice surface: the same plus the elastic rims of the contact spots,
+        but blind to the grains — a smooth base touches flat ice everywhere).
     """
 
     shear_strength: float | None = None
     viscosity: float | None = None
     sliding_speed: float | None = None
     film_cutoff: float | None = None
-    area_model: str = "flat-ice"
+    area_model: str = "grains"
 
     def __post_init__(self) -> None:
         for name in ("shear_strength", "viscosity", "sliding_speed", "film_cutoff"):

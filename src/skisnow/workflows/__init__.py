@@ -11,12 +11,19 @@ the elastic half-space with force and moment balance (eq. 2–3), grouped into z
   :func:`pair_distance`);
 * load cycles: :class:`LoadHistory`, :func:`read_load_history`, :data:`TEMPLATES`,
   :func:`template_history`, :func:`run_cycle` (an xarray Dataset over time),
-  :func:`kick_contact_summary`.
+  :func:`kick_contact_summary`; with a base texture, the friction proxies over the stride,
+  :func:`real_cycle_summary`.
 
-May import: ski, bench, network, identify, pipeline
+May import: ski, bench, network, identify, pipeline, multiscale, snow
 """
 
-from skisnow.workflows._cycle import UNLOADED_MASS, ZONES, kick_contact_summary, run_cycle
+from skisnow.workflows._cycle import (
+    UNLOADED_MASS,
+    ZONES,
+    kick_contact_summary,
+    real_cycle_summary,
+    run_cycle,
+)
 from skisnow.workflows._fleet import (
     CRITERIA,
     DEFAULT_LOAD_POSITION,
@@ -75,6 +82,7 @@ __all__ = [
     "pair_distance",
     "rank_across_snow",
     "read_load_history",
+    "real_cycle_summary",
     "resolve_fleet",
     "resolve_ski",
     "run_cycle",

@@ -14,7 +14,7 @@ Frames carrying less than :data:`UNLOADED_MASS` are the ski in the air or glidin
 from __future__ import annotations
 
 from collections.abc import Callable
-from typing import TYPE_CHECKING, Literal
+from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
 
@@ -26,7 +26,17 @@ from skisnow.workflows._solve import choose_route, loaded_profiles, solve_loaded
 if TYPE_CHECKING:
     import xarray as xr
 
-__all__ = ["UNLOADED_MASS", "ZONES", "kick_contact_summary", "run_cycle"]
+__all__ = ["UNLOADED_MASS", "ZONES", "kick_contact_summary", "real_cycle_summary", "run_cycle"]
+
+#: Real-contact variables of a cycle with a base texture (per frame, the whole ski; SI).
+_REAL_FIELDS = {
+    "real_area": ("m2", "real contact area, bearing model of ice grains"),
+    "real_area_flat": ("m2", "real contact area, flat-ice model"),
+    "reciprocal_separation": ("m", "total reciprocal separation, integral of 1/u dA"),
+    "dry_force": ("N", "dry/adhesive friction proxy tau * A_r"),
+    "viscous_force": ("N", "viscous friction proxy eta * v * integral of 1/u dA"),
+    "lubricated_force": ("N", "eta * v * A_r / u_c: contact spots sheared through the film"),
+}
 
 #: Below this load (as a mass, kg) a frame is the unloaded swing: not solved, no contact. It is
 #: the lightest load the camber bench (and the shipped networks) cover.
@@ -59,6 +69,9 @@ def run_cycle(
     warm_start: bool = True,
     ski_model: Literal["rigid", "flexible"] = "rigid",
     progress: Callable[[int, int], None] | None = None,
+    base: Any = None,
+    snow: Any = None,
+    friction: Any = None,
 ) -> xr.Dataset:
     """Contact of one ski over a load history → an :class:`xarray.Dataset` over time.
 
@@ -87,6 +100,12 @@ def run_cycle(
         changes the iterations, not the answer; ``False`` only to measure what it saves).
     progress
         Called as ``progress(done, total)`` after each frame.
+    base, snow, friction
+        A base texture (:func:`skisnow.multiscale.make_base`), the :class:`~skisnow.snow.Snow`
+        of its micro contact and :class:`~skisnow.multiscale.FrictionParameters`: each loaded
+        frame then also carries the real contact of the whole ski and the friction proxies
+        (``real_area``, ``real_area_flat``, ``reciprocal_separation``, ``dry_force``,
+        ``viscous_force``, ``lubricated_force``; :func:`real_cycle_summary` over the stride).
 
     Returns
     -------
@@ -145,6 +164,19 @@ def run_cycle(
         if keep_fields
         else {}
     )
+    micro = None
+    real_vals = {}
+    if base is not None:
+        from skisnow.multiscale import FrictionParameters, make_base, micro_curves
+
+        if snow is None:
+            raise InputError("base: the real contact of a cycle needs the snow (snow=...)")
+        curves = micro_curves(make_base(base), snow)
+        resolved = (friction or FrictionParameters()).resolve(
+            temperature_c=snow.temperature_c, hardness=curves.hardness
+        )
+        micro = (curves, resolved)
+        real_vals = {k: np.zeros(n_t) for k in _REAL_FIELDS}
     start = None
     for done, i in enumerate(range(n_t), start=1):
         if loaded[i]:
@@ -177,6 +209,17 @@ def run_cycle(
             merged[i] = zones.merged
             translation[i], rotation[i] = sol.translation, sol.rotation
             converged[i] = sol.converged
+            if micro is not None:
+                from skisnow.multiscale import real_contact
+
+                r = real_contact(sol, *micro)
+                t = r.total
+                real_vals["real_area"][i] = t.real_area_grains
+                real_vals["real_area_flat"][i] = t.real_area
+                real_vals["reciprocal_separation"][i] = t.reciprocal_separation
+                real_vals["dry_force"][i] = t.dry_force
+                real_vals["viscous_force"][i] = t.viscous_force
+                real_vals["lubricated_force"][i] = t.lubricated_force
             if keep_fields:
                 fields["pressure"][i] = sol.pressure
                 fields["snow_displacement"][i] = sol.displacement
@@ -210,6 +253,9 @@ def run_cycle(
     }
     for k, (unit, long_name) in _ZONE_FIELDS.items():
         data[k] = (tz, zone_vals[k], {"units": unit, "long_name": long_name})
+    for k, (unit, long_name) in _REAL_FIELDS.items():
+        if k in real_vals:
+            data[k] = ("time", real_vals[k], {"units": unit, "long_name": long_name})
     if keep_fields:
         data["height"] = (("time", "x"), heights, {"units": "m", "long_name": "loaded profile"})
         data["pressure"] = (("time", "x"), fields["pressure"], {"units": "Pa"})
@@ -234,9 +280,38 @@ def run_cycle(
             "warnings": "\n".join(notes),
             "n_points": int(x.size),
             "unloaded_mass": UNLOADED_MASS,
+            "base": "" if micro is None else micro[0].base,
+            "snow": "" if micro is None else micro[0].snow,
+            "friction": "" if micro is None else micro[1].assumptions(),
         },
     )
     return ds
+
+
+def real_cycle_summary(ds: xr.Dataset) -> dict[str, float]:
+    """The friction proxies over the cycle (a dataset of :func:`run_cycle` with a base).
+
+    Each frame stands for the interval around it (as in :func:`kick_contact_summary`);
+    unloaded frames carry no friction. Returns the time means over the cycle of the dry,
+    viscous and lubricated forces [N], their impulses ∫F dt [N·s], the load impulse ∫W dt, and
+    the cycle's µ = ∫(F_dry + F_visc) dt / ∫W dt and µ_lubricated.
+    """
+    if "viscous_force" not in ds:
+        raise InputError("the cycle has no real contact (run it with a base and a snow)")
+    t = np.asarray(ds["time"].values, dtype=float)
+    edges = np.concatenate([[t[0]], 0.5 * (t[1:] + t[:-1]), [t[-1]]])
+    dt = np.diff(edges)
+    span = float(dt.sum())
+    w = np.where(ds["loaded"].values, ds["load"].values, 0.0)
+    out: dict[str, float] = {"load_impulse": float(np.sum(w * dt))}
+    for k in ("dry_force", "viscous_force", "lubricated_force", "real_area"):
+        v = np.asarray(ds[k].values, dtype=float)
+        out[f"{k}_impulse" if k != "real_area" else "real_area_time"] = float(np.sum(v * dt))
+        out[f"mean_{k}"] = float(np.sum(v * dt) / span) if span > 0 else float("nan")
+    li = out["load_impulse"]
+    out["mu"] = (out["dry_force_impulse"] + out["viscous_force_impulse"]) / li
+    out["mu_lubricated"] = (out["lubricated_force_impulse"] + out["viscous_force_impulse"]) / li
+    return out
 
 
 def _runs(mask: np.ndarray) -> list[tuple[int, int]]:
