@@ -259,7 +259,7 @@ def report(
     profile_source: ProfileSourceOption = "auto",
     scheduler: SchedulerOption = None,
     mass_kg: MassGridOption = "5:130:5",
-    snow_modulus_mpa: SnowModulusGridOption = "20:400:40",
+    snow_modulus_mpa: SnowModulusGridOption = None,  # type: ignore[assignment]
     n_points: NPointsOption = 4096,
     stride: Annotated[
         str,
@@ -276,11 +276,16 @@ def report(
         ),
     ] = None,
     day_snow_mpa: Annotated[
-        float,
+        float | None,
         typer.Option(
-            "--day-snow-mpa", help="Snow modulus (MPa) of the stride and the fleet comparison."
+            "--day-snow-mpa",
+            help="Snow modulus (MPa) of the stride and the fleet comparison (default: the "
+            "--snow's modulus, else 100).",
         ),
-    ] = 100.0,
+    ] = None,
+    snow: SnowOption = None,
+    snow_temperature_c: SnowTemperatureOption = None,
+    base: BaseOption = None,
     ski_model: SkiModelOption = "rigid",
     explorer: Annotated[
         bool,
@@ -293,10 +298,18 @@ def report(
     json_out: JsonOption = False,
 ) -> None:
     """Write one self-contained HTML report of a ski (metrics, zones at standard loads, maps,
-    the contact over a stride, a fleet table with --compare-with, and a linked explorer page
-    with --explorer)."""
+    the contact over a stride, a fleet table with --compare-with, a linked explorer page
+    with --explorer, and the real contact with --base and --snow)."""
+    from skisnow.cli._media import resolve_base, resolve_snow
     from skisnow.report import study_ski, write_report
     from skisnow.sweep import parse_values
+
+    snow_obj, _ = resolve_snow(snow, None, temperature_c=snow_temperature_c, required=False)
+    texture = resolve_base(base, snow_obj)
+    if day_snow_mpa is None:
+        day_snow_mpa = 100.0 if snow_obj is None else snow_obj.modulus / 1e6
+    if snow_modulus_mpa is None:
+        snow_modulus_mpa = "20:400:40"
 
     source = resolve_profile_source(profile_source, [ski])
     stem = Path(ski).stem if ski.lower().endswith(".json") else ski  # a ski file: its stem
@@ -362,7 +375,21 @@ def report(
             write_explorer([ski], out / explorer_name, profile_source=source,
                            ski_models=(ski_model,), workers=workers, scheduler=scheduler,
                            progress=bar)  # fmt: skip
-    path = write_report(study, out, cycles=cycles, fleet=fleet, explorer=explorer_name)
+    real_cases = []
+    if texture is not None:
+        from skisnow.pipeline import solve_case
+
+        for case in study.cases:  # the standard loads again, with the grind on the snow
+            real_cases.append(
+                solve_case(
+                    ski, mass=case.mass, load_position=case.load_position,
+                    snow=snow_obj.replace(modulus=case.snow_modulus), base=texture,
+                    profile_source=case.profile_source, n_points=n_points, ski_model=ski_model,
+                )
+            )  # fmt: skip
+    path = write_report(
+        study, out, cycles=cycles, fleet=fleet, explorer=explorer_name, real_cases=real_cases
+    )
     if json_out:
         emit_json({"report": str(path), "explorer": explorer_name and str(out / explorer_name)})
         return

@@ -217,14 +217,21 @@ def _explorer_section(explorer: str) -> Section:
 
 
 def build_report(
-    study: Any, *, cycles: Sequence[Any] = (), fleet: Any = None, explorer: str | None = None
+    study: Any,
+    *,
+    cycles: Sequence[Any] = (),
+    fleet: Any = None,
+    explorer: str | None = None,
+    real_cases: Sequence[Any] = (),
 ) -> str:
     """The report of a :class:`skisnow.report.SkiStudy` as an HTML string.
 
     ``cycles``: load cycles of the ski (:func:`skisnow.workflows.run_cycle` Datasets, e.g. the
     stride at the athlete's weight); ``fleet``: a :class:`skisnow.workflows.FleetComparison`
     when several skis are compared; ``explorer``: the file name of an explorer page
-    (:mod:`skisnow.explore`) beside the report, linked. Each adds its section.
+    (:mod:`skisnow.explore`) beside the report, linked; ``real_cases``: cases solved with a
+    textured base and a snow (:attr:`skisnow.pipeline.Case.real`), the real contact. Each adds
+    its section.
     """
     from skisnow import __version__
     from skisnow.report._passport import passport_section
@@ -235,6 +242,10 @@ def build_report(
     comparison = _rigid_vs_flexible(study)
     sections += [comparison] if comparison is not None else []
     sections.append(_maps_section(study))
+    if real_cases:
+        from skisnow.report._multiscale import real_contact_section
+
+        sections.append(real_contact_section(real_cases))
     sections += [cycle_section(ds) for ds in cycles]
     if fleet is not None:
         sections.append(fleet_section(fleet))
@@ -258,6 +269,7 @@ def write_report(
     cycles: Sequence[Any] = (),
     fleet: Any = None,
     explorer: str | None = None,
+    real_cases: Sequence[Any] = (),
 ) -> Path:
     """Write ``{out_dir}/{ski}_report.html`` of a :class:`skisnow.report.SkiStudy` (with the
     optional ``cycles`` and ``fleet`` sections of :func:`build_report`); return its path."""
@@ -265,5 +277,6 @@ def write_report(
 
     path = Path(out_dir) / f"{study.ski.name}_report.html"
     return atomic_write(
-        path, build_report(study, cycles=cycles, fleet=fleet, explorer=explorer)
+        path,
+        build_report(study, cycles=cycles, fleet=fleet, explorer=explorer, real_cases=real_cases),
     )  # a killed run leaves no half page
