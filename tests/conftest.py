@@ -38,3 +38,18 @@ def _one_blas_thread():
 
     with threadpool_limits(limits=1, user_api="blas"):
         yield
+
+
+@pytest.fixture(scope="session", autouse=True)
+def _micro_curve_cache(tmp_path_factory: pytest.TempPathFactory):
+    """The micro-curve cache of the test session in a temporary directory (never the user's
+    ``~/.cache/skisnow``); subprocesses and Dask workers inherit it through the environment."""
+    import os
+
+    old = os.environ.get("SKISNOW_CACHE_DIR")
+    os.environ["SKISNOW_CACHE_DIR"] = str(tmp_path_factory.mktemp("skisnow-cache"))
+    yield
+    if old is None:
+        os.environ.pop("SKISNOW_CACHE_DIR", None)
+    else:
+        os.environ["SKISNOW_CACHE_DIR"] = old

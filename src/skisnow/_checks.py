@@ -225,6 +225,22 @@ QUANTITIES: dict[str, Quantity] = {
     "grid_points": Quantity(
         name="grid points", unit="(count)", low=16.0, plausible=(16.0, 2.0**21),
     ),
+    "sliding_speed": Quantity(
+        name="sliding speed", unit="m/s", low=0.0, low_open=True, plausible=(0.05, 40.0),
+        alternatives=(("km/h", 1 / 3.6, 0.0),),
+    ),
+    "film_cutoff": Quantity(
+        name="film-thickness cut-off", unit="nm", low=0.0, low_open=True,
+        plausible=(0.1, 1.0e5), alternatives=(("µm", 1e3, 0.0), ("m", 1e9, 0.0)),
+    ),
+    "shear_strength": Quantity(
+        name="shear strength of the real contact", unit="MPa", low=0.0, low_open=True,
+        plausible=(1e-4, 100.0), alternatives=(("Pa", 1e-6, 0.0), ("kPa", 1e-3, 0.0)),
+    ),
+    "viscosity": Quantity(
+        name="meltwater viscosity", unit="mPa·s", low=0.0, low_open=True,
+        plausible=(0.1, 100.0), alternatives=(("Pa·s", 1e3, 0.0),),
+    ),
     "cells_across": Quantity(
         name="cells across the width", unit="(count)", low=1.0, plausible=(1.0, 1024.0),
     ),

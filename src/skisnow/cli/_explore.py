@@ -9,6 +9,7 @@ from typing import Annotated
 import typer
 
 from skisnow.cli._app import app
+from skisnow.cli._media import SnowOption, SnowTemperatureOption
 from skisnow.cli._render import (
     DaskWorkersOption,
     JsonOption,
@@ -31,7 +32,7 @@ def explore(
     ),
     mass_kg: MassGridOption = "5:130:5",
     load_position_mm: LoadPositionGridOption = "-240:-40:40",
-    snow_modulus_mpa: SnowModulusGridOption = "40:400:40",
+    snow_modulus_mpa: SnowModulusGridOption = None,  # type: ignore[assignment]
     stations: Annotated[
         int, typer.Option("--stations", help="Display stations along the ski (divides 4096).")
     ] = 512,
@@ -54,6 +55,16 @@ def explore(
             "default: a temporary directory).",
         ),
     ] = None,
+    base: Annotated[
+        list[str] | None,
+        typer.Option(
+            "--base",
+            help="Base texture(s) for the real contact, a selector on the page (repeat: --base "
+            "S1 --base S3); needs --snow.",
+        ),
+    ] = None,
+    snow: SnowOption = None,
+    snow_temperature_c: SnowTemperatureOption = None,
     json_out: JsonOption = False,
 ) -> None:
     """Write an interactive explorer page: sliders for mass, load position and snow modulus.
@@ -62,10 +73,16 @@ def explore(
     of every grid point (zones, pressures, the ski base and the deformed snow).
     """
     from skisnow._errors import InputError
+    from skisnow.cli._media import resolve_base, resolve_snow
     from skisnow.cli._ski import resolve_profile_source
     from skisnow.explore import ExplorerGrid, write_explorer
     from skisnow.sweep import parse_values
 
+    snow_obj, _ = resolve_snow(snow, None, temperature_c=snow_temperature_c, required=False)
+    for b in base or ():
+        resolve_base(b, snow_obj)  # checked before any solve
+    if snow_modulus_mpa is None:
+        snow_modulus_mpa = "40:400:40" if snow_obj is None else f"{snow_obj.modulus / 1e6:.12g}"
     if ski_model not in ("rigid", "flexible", "both"):
         raise InputError(f"--ski-model: {ski_model!r} is not rigid, flexible or both")
     grid = ExplorerGrid(
@@ -87,6 +104,8 @@ def explore(
             workers=workers,
             scheduler=scheduler,
             progress=bar,
+            bases=tuple(base or ()),
+            snow=snow_obj,
         )
     seconds = time.perf_counter() - start
     size_mb = out.stat().st_size / 1e6

@@ -145,17 +145,18 @@ def friction_parameters(
     area_model: str = "grains",
 ) -> Any:
     """:class:`~skisnow.multiscale.FrictionParameters` from the options (field → SI)."""
+    from skisnow._checks import check_value
     from skisnow.multiscale import FrictionParameters
 
     values = {
-        "--shear-strength-mpa": shear_strength_mpa,
-        "--viscosity-mpa-s": viscosity_mpa_s,
-        "--sliding-speed-m-s": sliding_speed_m_s,
-        "--film-cutoff-nm": film_cutoff_nm,
+        "--shear-strength-mpa": (shear_strength_mpa, "shear_strength"),
+        "--viscosity-mpa-s": (viscosity_mpa_s, "viscosity"),
+        "--sliding-speed-m-s": (sliding_speed_m_s, "sliding_speed"),
+        "--film-cutoff-nm": (film_cutoff_nm, "film_cutoff"),
     }
-    for name, v in values.items():
-        if v is not None and not (v > 0 and v < float("inf")):
-            raise InputError(f"{name} must be a positive number, got {v:g}")
+    for name, (v, quantity) in values.items():
+        if v is not None:
+            check_value(v, quantity, where=name)
     return FrictionParameters(
         shear_strength=None if shear_strength_mpa is None else shear_strength_mpa * 1e6,
         viscosity=None if viscosity_mpa_s is None else viscosity_mpa_s * 1e-3,

@@ -26,9 +26,13 @@ from skisnow._errors import InputError
 #: whatever patch it belongs to: where the grip wax touches the snow).
 ZONES = ("rear", "middle", "front", "total", "rear_glide", "kick_zone", "front_glide")
 #: What the page needs of a sweep, in the page's order of dims.
-POINT = ("ski", "model", "mass_kg", "load_position_mm", "snow_modulus_mpa")
+POINT = ("ski", "model", "base", "mass_kg", "load_position_mm", "snow_modulus_mpa")
 FIELDS = ("pressure_kpa", "base_um", "snow_um", "zone_code")
 METRICS = ("length_mm", "area_cm2", "mean_pressure_kpa", "max_pressure_kpa", "load_share")
+#: The real contact the page shows with base textures: fields along the ski, totals per point.
+REAL_FIELDS = ("real_fraction_percent", "separation_um")
+REAL_METRICS = ("real_area_grains_mm2", "viscous_force_n")
+REAL_POINT = ("mu", "mu_lubricated")
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -70,9 +74,12 @@ def explorer_dataset(
     workers: int | None = 0,
     scheduler: str | None = None,
     progress: Callable[[int, int], None] | None = None,
+    bases: Sequence[str] = (),
+    snow: Any = None,
 ):
-    """Sweep ``grid`` for each ski and ski model, fields included: an :class:`xarray.Dataset`
-    with dims ``ski, model, mass_kg, load_position_mm, snow_modulus_mpa, zone, station``.
+    """Sweep ``grid`` for each ski, ski model and base, fields included: an
+    :class:`xarray.Dataset` with dims ``ski, model, base, mass_kg, load_position_mm,
+    snow_modulus_mpa, zone, station``.
 
     Variables: ``x_mm`` (ski, station); ``pressure_kpa``, ``base_um``, ``snow_um`` and
     ``zone_code`` per point and station; the zone metrics of :data:`METRICS` and ``patches`` per
@@ -85,6 +92,12 @@ def explorer_dataset(
     (``explore_rigid.zarr``, ...; default: a temporary one); ``workers``/``scheduler`` as in
     :func:`skisnow.sweep.run_sweep` (``0``: in this process). ``progress(done, total)`` is
     called after each chunk (one ski, position and snow modulus, all masses, warm-started).
+
+    ``bases`` (textures: ``'S1'``..``'S5'``, ``'smooth'``, files) with a ``snow``
+    (:class:`~skisnow.snow.Snow`: its micro properties; the modulus is the grid's) add the real
+    contact: ``real_fraction_percent`` and ``separation_um`` along the ski, the real area
+    (grains) and viscous force per zone, ``mu`` and ``mu_lubricated`` per point. Without
+    bases the ``base`` dimension has one empty entry.
     """
     from skisnow.sweep import SweepSpec, open_sweep, run_sweep
 
@@ -92,6 +105,18 @@ def explorer_dataset(
     models = tuple(ski_models)
     if not models or len(set(models)) != len(models) or set(models) - {"rigid", "flexible"}:
         raise InputError(f"ski models: need distinct 'rigid' and/or 'flexible', got {models}")
+    textures = tuple(bases) or ("",)
+    if bases and snow is None:
+        raise InputError("bases: the real contact needs a snow (its temperature and grains)")
+    if len(set(textures)) != len(textures):
+        raise InputError(f"bases: need distinct textures, got {textures}")
+    snow_text = ""
+    if bases:
+        import json
+
+        from skisnow.snow import snow_record
+
+        snow_text = json.dumps(snow_record(snow), sort_keys=True)
     specs = [
         SweepSpec(
             skis=tuple(skis),
@@ -102,9 +127,15 @@ def explorer_dataset(
             n_points=grid.n_points,
             ski_model=model,
             **explorer_spec_options(grid.n_display),
+            base=base,
+            snow=snow_text if base else "",
         )
         for model in models
+        for base in textures
     ]  # every input is checked here, before any store is created
+    for spec in specs:
+        if spec.base:  # the micro curves once, here (the workers read them from the cache)
+            spec.micro_curves()
     total = sum(len(spec.chunks()) for spec in specs)
     done = 0
 
@@ -116,12 +147,17 @@ def explorer_dataset(
 
     with tempfile.TemporaryDirectory(prefix="skisnow-explore-") as tmp:
         root = Path(tmp if store is None else store)
-        parts = {}
-        for model, spec in zip(models, specs, strict=True):
-            path = root / f"explore_{model}.zarr"
+        parts: dict[str, Any] = {model: {} for model in models}
+        for spec in specs:
+            tag = spec.ski_model + (f"_{Path(spec.base).stem}" if spec.base else "")
+            path = root / f"explore_{tag}.zarr"
             run_sweep(spec, path, workers=workers, scheduler=scheduler, on_progress=on_chunk)
-            parts[model] = open_sweep(path).load()
-    return explorer_from_sweeps(parts, specs[0])
+            parts[spec.ski_model][Path(spec.base).name if spec.base else ""] = (
+                open_sweep(path).load()
+            )
+    if not bases:
+        parts = {model: by_base[""] for model, by_base in parts.items()}
+    return explorer_from_sweeps(parts, specs[0], snow=snow)
 
 
 def explorer_spec_options(n_display: int) -> dict[str, object]:
@@ -131,28 +167,44 @@ def explorer_spec_options(n_display: int) -> dict[str, object]:
     return {"zones": ZONES, "field_stations": int(n_display)}
 
 
-def explorer_from_sweeps(sweeps: Mapping[str, Any], spec: Any):
+def explorer_from_sweeps(sweeps: Mapping[str, Any], spec: Any, *, snow: Any = None):
     """The explorer's dataset from finished sweeps, one per ski model (``{'rigid': ds}``), each
     run with :func:`explorer_spec_options` (fields and the explorer's zones) on the skis and
     profile source of ``spec`` (a :class:`skisnow.sweep.SweepSpec`): a page can be built from a
-    sweep that was run for something else (the demo's maps) without solving again."""
+    sweep that was run for something else (the demo's maps) without solving again.
+
+    With base textures, each model maps to ``{base name: ds}`` instead (the sweeps run with
+    ``SweepSpec.base`` and the ``snow`` of the real contact): the page gains the ``base``
+    selector and the real contact along the ski."""
     import xarray as xr
 
     models = list(sweeps)
     if not models or set(models) - {"rigid", "flexible"}:
         raise InputError(f"ski models: need 'rigid' and/or 'flexible', got {models}")
-    parts = []
+    per_model = []
+    names: list[str] | None = None
     for model in models:
-        ds = sweeps[model]
-        missing = [v for v in (*FIELDS, *METRICS, "patches", "converged", "x_mm") if v not in ds]
-        if missing or set(ZONES) - set(ds["zone"].values.tolist()):
-            raise InputError(
-                f"the {model} sweep lacks what the explorer shows ({', '.join(missing) or 'zones'})"
-                ": run it with skisnow.explore.explorer_spec_options"
-            )
-        parts.append(ds[[*FIELDS, *METRICS, "patches", "converged", "x_mm"]].sel(zone=list(ZONES)))
-    ds = xr.concat(parts, dim=xr.DataArray(models, dims="model", name="model"))
-    ds["x_mm"] = ds["x_mm"].isel(model=0, drop=True)
+        entry = sweeps[model]
+        by_base = {"": entry} if isinstance(entry, xr.Dataset) else dict(entry)
+        if names is not None and list(by_base) != names:
+            raise InputError(f"the {model} sweeps hold other bases ({list(by_base)}) than {names}")
+        names = list(by_base)
+        parts = []
+        for base, ds in by_base.items():
+            keep = [*FIELDS, *METRICS, "patches", "converged", "x_mm"]
+            keep += [*REAL_FIELDS, *REAL_METRICS, *REAL_POINT] if base else []
+            missing = [v for v in keep if v not in ds]
+            if missing or set(ZONES) - set(ds["zone"].values.tolist()):
+                raise InputError(
+                    f"the {model} sweep{f' of base {base}' if base else ''} lacks what the "
+                    f"explorer shows ({', '.join(missing) or 'zones'}): run it with "
+                    "skisnow.explore.explorer_spec_options"
+                    + (" and the base and snow of the real contact" if base else "")
+                )
+            parts.append(ds[keep].sel(zone=list(ZONES)))
+        per_model.append(xr.concat(parts, dim=xr.DataArray(names, dims="base", name="base")))
+    ds = xr.concat(per_model, dim=xr.DataArray(models, dims="model", name="model"))
+    ds["x_mm"] = ds["x_mm"].isel(model=0, base=0, drop=True)
     ds = ds.transpose(*POINT, "zone", "station", missing_dims="ignore")
     # the kick-zone marks of each ski [mm] (NaN without a kick zone), drawn on the page
     marks = np.full((len(spec.skis), 2), np.nan)
@@ -161,5 +213,6 @@ def explorer_from_sweeps(sweeps: Mapping[str, Any], spec: Any):
         if kz is not None:
             marks[k] = (kz[0] * 1e3, kz[1] * 1e3)
     ds["kick_zone_mm"] = xr.DataArray(marks, dims=("ski", "mark"))
-    ds.attrs = {"profile_source": spec.profile_source, "ski_models": models}
+    ds.attrs = {"profile_source": spec.profile_source, "ski_models": models,
+                "snow": "" if snow is None else snow.describe()}  # fmt: skip
     return ds

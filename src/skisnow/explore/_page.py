@@ -57,10 +57,18 @@ def render_explorer(ds: Any, *, title: str = "skisnow explorer", subtitle: str =
     """
     curves = {k: np.asarray(ds[k].values, dtype=float) for k in CURVES}
     arrays = {k: np.asarray(ds[k].values) for k in ARRAYS}
+    real = "real_fraction_percent" in ds
+    if real:  # the real contact: the separation spans µm to mm, so it travels as log10(µm)
+        curves["real_fraction_percent"] = np.asarray(ds["real_fraction_percent"].values, float)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            curves["separation_log10_um"] = np.log10(np.asarray(ds["separation_um"].values, float))
+        for k in ("real_area_grains_mm2", "viscous_force_n", "mu", "mu_lubricated"):
+            arrays[k] = np.asarray(ds[k].values)
     manifest, blob = pack(curves, arrays)
     grid = {
         "ski": [display_name(s) for s in ds["ski"].values],
         "model": [str(s) for s in ds["model"].values],
+        "base": [str(s) for s in ds["base"].values] if "base" in ds.dims else [""],
         "mass_kg": [float(v) for v in ds["mass_kg"].values],
         "load_position_mm": [float(v) for v in ds["load_position_mm"].values],
         "snow_modulus_mpa": [float(v) for v in ds["snow_modulus_mpa"].values],
@@ -72,6 +80,8 @@ def render_explorer(ds: Any, *, title: str = "skisnow explorer", subtitle: str =
         "grid": grid,
         "arrays": manifest,
         "n_stations": int(ds.sizes["station"]),
+        "real": bool(real),
+        "snow": str(ds.attrs.get("snow", "")),
         "skisnow_version": ds.attrs.get("skisnow_version", ""),
         "zones": [str(z) for z in ds["zone"].values],
         "kick_zone_mm": [None if np.isnan(k).any() else [float(k[0]), float(k[1])] for k in kick],
@@ -116,6 +126,8 @@ def write_explorer(
     scheduler: str | None = None,
     progress: Callable[[int, int], None] | None = None,
     dataset: Any = None,
+    bases: Sequence[str] = (),
+    snow: Any = None,
 ) -> tuple[Path, Any]:
     """Solve the explorer's grid (:func:`skisnow.explore.explorer_dataset`) and write its page
     to ``path`` atomically (a killed run leaves no half page). Returns ``(path, dataset)``.
@@ -130,7 +142,8 @@ def write_explorer(
     if dataset is None:
         dataset = explorer_dataset(skis, grid, profile_source=profile_source,
                                    ski_models=ski_models, store=store, workers=workers,
-                                   scheduler=scheduler, progress=progress)  # fmt: skip
+                                   scheduler=scheduler, progress=progress, bases=bases,
+                                   snow=snow)  # fmt: skip
     ds = dataset.copy()
     ds.attrs["skisnow_version"] = __version__
     names = ", ".join(display_name(s) for s in ds["ski"].values)

@@ -9,7 +9,7 @@
   const PALETTE = META.palette, LABELS = META.labels, CMAP = META.cmap;
   const ZONE_NAMES = META.zones;
   const CODED = ["rear", "middle", "front"]; // zone_code 1, 2, 3 of each display station
-  const state = { ski: 0, model: 0, mass: 0, pos: 0, mod: 0 };
+  const state = { ski: 0, model: 0, base: 0, mass: 0, pos: 0, mod: 0 };
   let DATA = null;
 
   function b64bytes(text) {
@@ -54,11 +54,7 @@
   }
 
   // flat index of the grid point (ski, model, mass, pos, mod)
-  function point() {
-    const g = META.grid;
-    return (((state.ski * g.model.length + state.model) * g.mass_kg.length + state.mass) *
-      g.load_position_mm.length + state.pos) * g.snow_modulus_mpa.length + state.mod;
-  }
+  function point() { return pointAt(state.mass, state.mod); }
   function row(name, p) {
     const d = DATA[name], len = d.a.shape[d.a.shape.length - 1];
     return d.v.subarray(p * len, (p + 1) * len);
@@ -70,10 +66,36 @@
   }
   function metric(name, p, z) { return DATA[name].v[p * ZONE_NAMES.length + z]; }
   function zoneIndex(name) { return ZONE_NAMES.indexOf(name); }
-  function pointAt(a, e) { // flat index of (mass a, modulus e) at the current ski, model, position
+  function pointAt(a, e) { // flat index of (mass a, modulus e) at the current ski, model, base, position
     const g = META.grid;
-    return (((state.ski * g.model.length + state.model) * g.mass_kg.length + a) *
-      g.load_position_mm.length + state.pos) * g.snow_modulus_mpa.length + e;
+    return ((((state.ski * g.model.length + state.model) * g.base.length + state.base) *
+      g.mass_kg.length + a) * g.load_position_mm.length + state.pos) * g.snow_modulus_mpa.length + e;
+  }
+
+  function drawReal(p, xs, zone) { // the real contact of the base shown (with base textures)
+    const frac = curve("real_fraction_percent", p), sep = curve("separation_log10_um", p);
+    {
+      const { ctx, w, h } = setupCanvas("real-fraction");
+      let hi = 0.01; for (const v of frac) hi = Math.max(hi, v);
+      const ax = axes(ctx, w, h, xs[0], xs[xs.length - 1], 0, hi * 1.1, "x [mm]", "real area [% of apparent]");
+      shadeZones(ctx, xs, zone, ax.sx, ax.T, h - ax.B);
+      line(ctx, xs, frac, ax.sx, ax.sy, "#16a085", 1.5);
+    }
+    {
+      const { ctx, w, h } = setupCanvas("separation");
+      let lo = Infinity, hi = -Infinity;
+      for (const v of sep) { if (isFinite(v)) { lo = Math.min(lo, v); hi = Math.max(hi, v); } }
+      const ax = axes(ctx, w, h, xs[0], xs[xs.length - 1], Math.floor(lo), Math.ceil(hi), "x [mm]", "log10 separation [µm]");
+      shadeZones(ctx, xs, zone, ax.sx, ax.T, h - ax.B);
+      line(ctx, xs, sep, ax.sx, ax.sy, "#1f5fbf", 1.5);
+    }
+    const tq = ZONE_NAMES.indexOf("total");
+    const area = metric("real_area_grains_mm2", p, tq), visc = metric("viscous_force_n", p, tq);
+    const mu = DATA.mu.v[p], mul = DATA.mu_lubricated.v[p];
+    document.getElementById("real-note").textContent =
+      `base ${META.grid.base[state.base]} on ${META.snow}: real area ${area.toFixed(1)} mm² ` +
+      `(bearing model), viscous drag ${visc.toFixed(1)} N, µ ${mul.toFixed(3)}–${mu.toFixed(3)} ` +
+      "(lubricated–dry contact spots; cited default parameters, an estimate, not a measurement)";
   }
 
   // ---- drawing ------------------------------------------------------------------------------
@@ -279,7 +301,7 @@
   // ---- the link (URL fragment) and the export of the case shown ------------------------------
   function fragment() {
     const g = META.grid;
-    return "#" + new URLSearchParams({ ski: g.ski[state.ski], model: g.model[state.model],
+    return "#" + new URLSearchParams({ ski: g.ski[state.ski], model: g.model[state.model], base: g.base[state.base],
       mass: g.mass_kg[state.mass], pos: g.load_position_mm[state.pos], mod: g.snow_modulus_mpa[state.mod],
       zoom: document.getElementById("zoom").checked ? "1" : "0" }).toString();
   }
@@ -288,6 +310,7 @@
     const near = (vals, v) => vals.reduce((b, x, i) => (Math.abs(x - v) < Math.abs(vals[b] - v) ? i : b), 0);
     if (q.has("ski") && g.ski.indexOf(q.get("ski")) >= 0) document.getElementById("ski").value = g.ski.indexOf(q.get("ski"));
     if (q.has("model") && g.model.indexOf(q.get("model")) >= 0) document.getElementById("model").value = g.model.indexOf(q.get("model"));
+    if (q.has("base") && g.base.indexOf(q.get("base")) >= 0) document.getElementById("base").value = g.base.indexOf(q.get("base"));
     for (const [key, id, vals] of [["mass", "mass", g.mass_kg], ["pos", "pos", g.load_position_mm], ["mod", "mod", g.snow_modulus_mpa]]) {
       if (q.has(key) && isFinite(Number(q.get(key)))) document.getElementById(id).value = near(vals, Number(q.get(key)));
     }
@@ -324,6 +347,7 @@
     const p = point(), xs = DATA["x_mm"].v.subarray(state.ski * META.n_stations, (state.ski + 1) * META.n_stations);
     const zone = row("zone_code", p);
     drawProfile(p, xs, zone); drawPressure(p, xs, zone); table(p);
+    if (META.real) drawReal(p, xs, zone);
     drawMap("map-area", "area_cm2", "total contact area", "cm²");
     drawMap("map-pressure", "mean_pressure_kpa", "mean pressure (total)", "kPa");
     document.body.dataset.point = String(p);
@@ -360,11 +384,17 @@
       el.value = el.dataset.initial;
     }
     const skiSel = document.getElementById("ski"), modelSel = document.getElementById("model");
+    const baseSel = document.getElementById("base");
     g.ski.forEach((s, i) => skiSel.add(new Option(s, i)));
     g.model.forEach((s, i) => modelSel.add(new Option(s, i)));
+    g.base.forEach((s, i) => baseSel.add(new Option(s || "(none)", i)));
     modelSel.disabled = g.model.length < 2;
+    baseSel.disabled = g.base.length < 2;
+    document.getElementById("base-label").hidden = !META.real;
+    document.getElementById("real-panel").hidden = !META.real;
     restore();
     bind("mass", "mass"); bind("pos", "pos"); bind("mod", "mod"); bind("ski", "ski"); bind("model", "model");
+    bind("base", "base");
     document.getElementById("zoom").addEventListener("change", render);
     bindMap("map-area"); bindMap("map-pressure");
     document.getElementById("export-csv").addEventListener("click", () => download("csv"));
