@@ -34,7 +34,7 @@ def test_contact_prints_the_real_contact_beside_the_apparent(capsys, texture) ->
     doc = _json(capsys, [*CONTACT, "--snow", "machine-made", "--base", texture])
     assert doc["snow_modulus_mpa"] == pytest.approx(175.0)
     real = doc["real"]
-    assert {"total", "rear", "front", "patch 1"} <= set(real)
+    assert {"total", "rear_glide", "front_glide", "patch 1"} <= set(real)
     total = real["total"]
     assert total["load_n"] == pytest.approx(60 * STANDARD_GRAVITY, rel=1e-6)
     assert total["apparent_area_cm2"] == pytest.approx(doc["total"]["area_cm2"], rel=1e-9)

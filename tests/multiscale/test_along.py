@@ -64,7 +64,7 @@ def test_regions_partition_the_ski_and_patches_hold_the_contact(setup) -> None:
         case = _case(setup, ski=ski)
         parts = case.real_summary()
         total = parts["total"]
-        regions = [k for k in ("rear", "kick", "front") if k in parts]
+        regions = [k for k in ("rear_glide", "kick_zone", "front_glide") if k in parts]
         patches = [k for k in parts if k.startswith("patch")]
         assert patches
         for field in ("apparent_area", "real_area", "reciprocal_separation", "load"):

@@ -138,10 +138,7 @@ class Case:
         :func:`skisnow.pipeline._real.station_masks`)."""
         from skisnow.pipeline._real import station_masks
 
-        return station_masks(
-            self.solution.x, self.solution.pressure, kick_zone=self.kick_zone,
-            split=self.zones.split, load_position=self.load_position,
-        )  # fmt: skip
+        return station_masks(self.solution.x, self.solution.pressure, kick_zone=self.kick_zone)
 
     def real_summary(self) -> dict[str, RealSummary]:
         """The real contact per region and patch and in total (needs a base with a texture

@@ -6,7 +6,9 @@ material of eq. 2, the base material of eq. 2, and — when the base carries a t
 given — the micro curves of that base × snow. :func:`case_real_contact` then evaluates them on
 the apparent contact (:func:`skisnow.multiscale.real_contact`). :func:`station_masks` gives the
 station masks the real contact is summarised over: regions fixed by the ski (rear glide / kick
-zone / front glide for a classic; rear / front of the split otherwise) and every contact patch.
+zone / front glide for a classic; rear / front glide split at the balance point otherwise) and
+every contact patch — the two views of issue 26; once its regions are in
+:mod:`skisnow.contact`, the masks come from there.
 """
 
 from __future__ import annotations
@@ -113,18 +115,23 @@ def case_real_contact(
     return real_contact(solution, c, resolved)
 
 
+#: Region names (tail → tip), as issue 26's regions will name them in skisnow.contact.
+REGIONS_CLASSIC: tuple[str, str, str] = ("rear_glide", "kick_zone", "front_glide")
+REGIONS_SPLIT: tuple[str, str] = ("rear_glide", "front_glide")
+
+
 def station_masks(
     x: np.ndarray,
     pressure: np.ndarray,
     *,
     kick_zone: tuple[float, float] | None,
-    split: float,
-    load_position: float,
+    split: float = 0.0,
 ) -> dict[str, np.ndarray]:
-    """Boolean station masks: ``total``; the regions fixed by the ski — ``rear``, ``kick``,
-    ``front`` between the kick-zone marks for a classic, else ``rear``/``front`` of ``split``
-    (the zones' split; the load point when it is undefined); and ``patch 1``… for every
-    contiguous run of stations in contact, from the tail."""
+    """Boolean station masks: ``total``; the regions fixed by the ski — ``rear_glide``,
+    ``kick_zone``, ``front_glide`` (a station on a mark belongs to the kick zone) for a classic,
+    else ``rear_glide``/``front_glide`` split at ``split`` (default the balance point, x = 0; a
+    station on it belongs to the front); and ``patch 1``… for every contiguous run of stations
+    in contact, from the tail. The regions partition the ski; the patches hold its contact."""
     from skisnow.contact import patches
 
     x = np.asarray(x)
@@ -133,13 +140,12 @@ def station_masks(
     masks: dict[str, np.ndarray] = {"total": np.ones(x.shape, dtype=bool)}
     if kick_zone is not None:
         k0, k1 = kick_zone
-        masks["rear"] = x < k0
-        masks["kick"] = (x >= k0) & (x <= k1)
-        masks["front"] = x > k1
+        masks["rear_glide"] = x < k0
+        masks["kick_zone"] = (x >= k0) & (x <= k1)
+        masks["front_glide"] = x > k1
     else:
-        at = split if np.isfinite(split) else load_position
-        masks["rear"] = x < at
-        masks["front"] = x >= at
+        masks["rear_glide"] = x < split
+        masks["front_glide"] = x >= split
     for k, (i, j) in enumerate(patches(along), start=1):
         m = np.zeros(x.shape, dtype=bool)
         m[i : j + 1] = True

@@ -35,12 +35,13 @@ def plot_real_contact(case: Any, *, title: str | None = None) -> Figure:
     a0, a1, a2 = axes[:, 0]
     with style():
         masks = case.station_masks()
-        for name in ("rear", "kick", "front"):
-            if name not in masks:
+        colors = {"rear_glide": "rear", "kick_zone": "middle", "front_glide": "front"}
+        for name, zone in colors.items():
+            if name not in masks or not masks[name].any():
                 continue
             sel = masks[name]
             lo, hi = x[sel].min(), x[sel].max()
-            color = ZONE_COLORS.get("middle" if name == "kick" else name, "grey")
+            color = ZONE_COLORS.get(zone, "grey")
             for ax in (a0, a1, a2):
                 ax.axvspan(lo, hi, color=color, alpha=0.06, lw=0)
         a0.plot(x, r.pressure * 1e-3, color=COLORS["pressure"])
