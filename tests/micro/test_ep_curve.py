@@ -1,18 +1,10 @@
 """The elastic–plastic flat-ice curves against closed forms, limits and refinement.
 
-References (each test names its own):
-
-* Westergaard's wavy surface (Johnson 1985, Contact Mechanics §13.2): h = Δ(1 − cos 2πx/λ)
-  on an elastic half-plane, p̄ = p*·sin²(πa/λ), p* = πE*Δ/λ, pressure
-  p(x) = 2p̄ cos(πx/λ)·√(sin²(πa/λ) − sin²(πx/λ)) / sin²(πa/λ); the approach is u(0) of the
-  periodic line-load Green's function −(2/πE*)·ln|2 sin(π t/λ)| (zero mean), so the mean gap
-  is ū = Δ − u(0), integrated here by quadrature of the closed-form pressure;
-* the rigid–perfectly-plastic truncated sinusoid (E' → ∞): contact where cos θ > c with
-  arccos(c)/π = p/H; ū = Δ[c(1 − φ/π) + sin φ/π] about the peak plane (φ = arccos c), and
-  ⟨1/u⟩ with the film cut-off from ∫dθ/(c − cos θ) = ln|(t − k)/(t + k)|/√(1 − c²),
-  t = tan(θ/2), k² = (1 − c)/(1 + c);
-* the purely plastic limit A = F/H of a stiff body on a grind;
-* E* = E'/2 (skisnow's equivalent modulus is twice Johnson's contact modulus).
+References (each test names its own): Westergaard's elastic wavy contact and the
+rigid–perfectly-plastic truncated sinusoid of :mod:`skisnow.micro.reference` (both checked on
+their own in ``test_reference.py``); the purely plastic limit A = F/H of a stiff body on a grind;
+Johnson's periodic indentation 2p/(E*q). E* = E'/2 (skisnow's equivalent modulus is twice
+Johnson's contact modulus).
 """
 
 from __future__ import annotations
@@ -21,7 +13,6 @@ import math
 
 import numpy as np
 import pytest
-from scipy import integrate
 
 from skisnow.micro import (
     MirrorOperator,
@@ -30,6 +21,7 @@ from skisnow.micro import (
     make_topography,
     prepare,
 )
+from skisnow.micro.reference import plastic_sinusoid, westergaard
 
 
 def _sinusoid(delta: float, wavelength: float, periods: int, dx: float, ny: int = 4):
@@ -55,28 +47,6 @@ def test_mirror_operator_indents_a_cosine_as_johnson_says() -> None:
     assert np.max(np.abs(op(np.ones(p.size)))) < 1e-20
 
 
-def _westergaard_mean_gap(pbar: float, delta: float, lam: float, estar: float) -> float:
-    pstar = math.pi * estar * delta / lam
-    s2 = pbar / pstar
-    a = lam / math.pi * math.asin(math.sqrt(s2))
-
-    def p(s: float) -> float:
-        return (
-            2
-            * pbar
-            * math.cos(math.pi * s / lam)
-            * math.sqrt(max(s2 - math.sin(math.pi * s / lam) ** 2, 0.0))
-            / s2
-        )
-
-    def integrand(s: float) -> float:
-        return p(s) * math.log(abs(2 * math.sin(math.pi * s / lam)))
-
-    val, _ = integrate.quad(integrand, -a, a, points=[0.0], limit=200, epsabs=0, epsrel=1e-12)
-    u0 = -2.0 / (math.pi * estar) * val
-    return delta - u0  # mean gap about the mean plane; the texture's peak is at +Δ
-
-
 def test_light_load_is_westergaards_elastic_contact() -> None:
     e, delta, lam, dx = 1e9, 1e-6, 200e-6, 0.5e-6
     topo, _ = _sinusoid(delta, lam, 2, dx)
@@ -86,30 +56,11 @@ def test_light_load_is_westergaards_elastic_contact() -> None:
     assert c.converged.all()
     assert np.all(c.plastic_fraction == 0)
     for pbar, frac, ubar in zip(loads, c.fractional_area, c.mean_separation, strict=True):
-        a = lam / math.pi * math.asin(math.sqrt(pbar / pstar))
+        ref = westergaard(pbar, amplitude=delta, wavelength=lam, contact_modulus=e / 2)
         # contact width counted in whole 0.5 µm pixels: within one pixel per edge
-        assert frac == pytest.approx(2 * a / lam, abs=2 * dx / lam)
-        # mean separation measured from the texture's mean plane (the peak is at +Δ):
-        # ū = ⟨max(g, 0)⟩; Westergaard's ū is about the mean plane too
-        assert ubar == pytest.approx(_westergaard_mean_gap(pbar, delta, lam, e / 2), rel=2e-3)
-
-
-def _plastic_sinusoid(p_over_h: float, delta: float, cutoff: float) -> tuple[float, float]:
-    """ū and ⟨1/max(u, u_c)⟩ of the rigid–perfectly-plastic truncated sinusoid."""
-    phi = math.pi * p_over_h  # contact where |θ| < φ
-    c = math.cos(phi)
-    ubar = delta * (c * (1 - phi / math.pi) + math.sin(phi) / math.pi)
-    k = math.sqrt((1 - c) / (1 + c))
-    # gaps u(θ) = Δ(c − cos θ) on φ < θ < π (twice by symmetry); u < u_c near θ = φ
-    theta_c = math.acos(c - cutoff / delta)
-
-    def prim(theta: float) -> float:
-        t = math.tan(theta / 2)
-        return math.log(abs((t - k) / (t + k))) / math.sqrt(1 - c * c)
-
-    above = (prim(math.pi - 1e-12) - prim(theta_c)) / delta
-    recip = 2 * ((theta_c - phi) / cutoff + above) / (2 * math.pi)
-    return ubar, recip
+        assert frac == pytest.approx(ref.contact_fraction, abs=2 * dx / lam)
+        # mean separation ⟨max(g, 0)⟩ about the texture's mean plane, as Westergaard's
+        assert ubar == pytest.approx(ref.mean_gap, rel=2e-3)
 
 
 def test_stiff_limit_is_the_rigid_plastic_truncated_sinusoid() -> None:
@@ -126,7 +77,8 @@ def test_stiff_limit_is_the_rigid_plastic_truncated_sinusoid() -> None:
     uc = 10 ** (-7.5)  # a bin edge of the gap distribution: exact there
     recip = c.reciprocal_separation(uc)
     for i, ph in enumerate(loads / hard):
-        ubar, rec = _plastic_sinusoid(ph, delta, uc)
+        ref = plastic_sinusoid(ph, amplitude=delta, film_cutoff=uc)
+        ubar, rec = ref.mean_separation, ref.reciprocal_separation
         # the truncation level is found to within one pixel's height step at the contact edge
         step = delta * 2 * np.pi / lam * np.sin(np.pi * ph) * dx
         assert c.mean_separation[i] == pytest.approx(ubar, abs=step)
