@@ -52,6 +52,7 @@ def decompose(q: np.ndarray) -> tuple[float, float, float]:
 def main() -> None:
     p = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawTextHelpFormatter)
     p.add_argument("--out", type=Path, default=None, help="folder for the CSV tables")
+    p.add_argument("--small", action="store_true", help="0.3 mm maps, 1024 stations (a smoke run)")
     args = p.parse_args()
     os.environ.setdefault("COLUMNS", "200")
 
@@ -71,7 +72,11 @@ def main() -> None:
 
     snow = snow_preset("machine-made")
     friction = FrictionParameters()
-    curves = {t: micro_curves(make_base(t), snow) for t in TEXTURES}
+    size = 0.3e-3 if args.small else 1e-3
+    small = {"pixel": 3e-6, "bearing_positions": 12, "grain_nodes": 2} if args.small else {}
+    n_points = 1024 if args.small else 4096
+    bases = {t: make_base(t, size=size) for t in TEXTURES}
+    curves = {t: micro_curves(bases[t], snow, **small) for t in TEXTURES}
     resolved = friction.resolve(temperature_c=snow.temperature_c, hardness=snow.hardness)
 
     # (a) camber × texture --------------------------------------------------------------------
@@ -79,7 +84,8 @@ def main() -> None:
     for ski in SKIS:
         for m in (0.5 * BODY, BODY):
             for e in SNOWS:
-                c = solve_case(ski, mass=m, load_position=-0.12, snow=snow.replace(modulus=e))
+                c = solve_case(ski, mass=m, load_position=-0.12, snow=snow.replace(modulus=e),
+                               n_points=n_points)  # fmt: skip
                 cases.append((f"{ski} {m:g} kg {e / 1e6:g} MPa", c))
     names = {
         "A_r grains / W [mm²/N]": lambda t, w: t.real_area_grains * 1e6 / w,
@@ -120,16 +126,19 @@ def main() -> None:
     grinds = TEXTURES[:5]
     times = [scherge2021.TABLE3_AVERAGE_S[g] for g in grinds]
     diam = np.arange(450e-6, 750e-6 + 1e-9, 50e-6)
+    if args.small:
+        diam = np.array([100e-6, 150e-6, 200e-6])  # grains that fit a 0.3 mm map
     afr = []
     for g in grinds:
         sw = bearing_sweep(
-            make_base(g).prepared, diameters=diam, pressure=20e3, hardness=snow.hardness,
+            bases[g].prepared, diameters=diam, pressure=20e3, hardness=snow.hardness,
             stride=8, workers=2,
         )  # fmt: skip
         afr.append(grain_average(diam, sw.fractional_area))
     desc: dict[str, list[float]] = {"<A_fr> at 20 kPa (bearing, eq. 13)": afr}
     for ski in SKIS:
-        c = solve_case(ski, mass=BODY, load_position=-0.12, snow=snow.replace(modulus=100e6))
+        c = solve_case(ski, mass=BODY, load_position=-0.12, snow=snow.replace(modulus=100e6),
+                       n_points=n_points)  # fmt: skip
         tot = [real_contact(c.solution, curves[g], resolved).total for g in grinds]
         w = c.solution.load
         desc[f"{ski}: A_r flat ice"] = [t.real_area for t in tot]
