@@ -62,6 +62,13 @@ def test_interpolation_meets_the_grid_and_the_zero_load_limits(small_base, snow,
     # below the grid the fraction is linear in p (plastic and elastic light-load limits)
     assert c.real_fraction(p[:1] / 4)[0] == pytest.approx(c.real_fractional_area[0] / 4)
     assert c.beyond(np.array([p[-1] * 2]))[0] and not c.beyond(p).any()
+    # the fused evaluation of the along-ski coupling is the four separate ones
+    q = np.geomspace(p[0] / 10, p[-1] * 2, 57)
+    fr, frg, sep, rec = c.contact_values(q, uc)
+    assert fr == pytest.approx(c.real_fraction(q), rel=1e-12)
+    assert frg == pytest.approx(c.real_fraction(q, model="grains"), rel=1e-12)
+    assert sep == pytest.approx(c.mean_separation(q), rel=1e-12)
+    assert rec == pytest.approx(c.reciprocal_separation(q, uc), rel=1e-12)
 
 
 def test_smooth_base_is_full_contact_on_flat_ice_and_p_over_h_on_grains(snow, fresh) -> None:
@@ -74,6 +81,9 @@ def test_smooth_base_is_full_contact_on_flat_ice_and_p_over_h_on_grains(snow, fr
         c.bearing_pressures / c.hardness, rel=1e-12
     )
     assert c.rest_reciprocal(2e-6, 1e-7) == pytest.approx(1 / 2e-6)
+    fr, frg, sep, rec = c.contact_values(p, 1e-7)
+    assert np.all(fr == 1.0) and np.all(sep == 0.0) and np.all(rec == 0.0)
+    assert frg == pytest.approx(p / c.hardness, rel=1e-9)
 
 
 def test_cache_round_trip_and_key(small_base, snow, fresh, monkeypatch) -> None:

@@ -141,29 +141,36 @@ class RealContact:
 
     def summarize(self, masks: Mapping[str, np.ndarray]) -> dict[str, RealSummary]:
         """The real contact of every named set of stations (boolean masks over :attr:`x`)."""
+        names = list(masks)
+        m = np.zeros((len(names), self.x.size))
+        for k, name in enumerate(names):
+            mk = np.asarray(masks[name], dtype=bool)
+            if mk.shape != self.x.shape:
+                raise InputError(f"mask {name!r} has shape {mk.shape}; stations: {self.x.shape}")
+            m[k] = mk
+        q = np.stack([
+            self.load, self.apparent_area, self.real_area, self.real_area_grains,
+            self.separation_integral, self.reciprocal, self.dry_force, self.viscous_force,
+            self.lubricated_force,
+        ])  # fmt: skip
+        sums = m @ q.T  # one product for every mask and quantity
+        counts = m.sum(axis=1)
         out: dict[str, RealSummary] = {}
-        dry, visc, lub = self.dry_force, self.viscous_force, self.lubricated_force
-        for name, mask in masks.items():
-            m = np.asarray(mask, dtype=bool)
-            if m.shape != self.x.shape:
-                raise InputError(f"mask {name!r} has shape {m.shape}; stations: {self.x.shape}")
-            app = float(self.apparent_area[m].sum())
-            real = float(self.real_area[m].sum())
+        for k, name in enumerate(names):
+            load, app, real, grains, sep, recip, dry, visc, lub = (float(v) for v in sums[k])
             out[name] = RealSummary(
                 name=name,
-                stations=int(m.sum()),
-                load=float(self.load[m].sum()),
+                stations=int(counts[k]),
+                load=load,
                 apparent_area=app,
                 real_area=real,
-                real_area_grains=float(self.real_area_grains[m].sum()),
+                real_area_grains=grains,
                 real_fraction=real / app if app > 0 else math.nan,
-                mean_separation=float(self.separation_integral[m].sum()) / app
-                if app > 0
-                else math.nan,
-                reciprocal_separation=float(self.reciprocal[m].sum()),
-                dry_force=float(dry[m].sum()),
-                viscous_force=float(visc[m].sum()),
-                lubricated_force=float(lub[m].sum()),
+                mean_separation=sep / app if app > 0 else math.nan,
+                reciprocal_separation=recip,
+                dry_force=dry,
+                viscous_force=visc,
+                lubricated_force=lub,
             )
         return out
 
@@ -172,12 +179,13 @@ class RealContact:
         """The whole ski."""
         return self.summarize({"total": np.ones(self.x.shape, dtype=bool)})["total"]
 
-    def friction_estimate(self) -> dict[str, Any]:
+    def friction_estimate(self, total: RealSummary | None = None) -> dict[str, Any]:
         """µ = F/W with its terms and assumptions — never a bare number.
 
         ``mu`` = (τ·A_r + η·v·∫1/u dA)/W (dry real contact); ``mu_lubricated`` = (η·v·A_r/u_c
-        + η·v·∫1/u dA)/W (the contact spots sheared through the film instead)."""
-        t = self.total
+        + η·v·∫1/u dA)/W (the contact spots sheared through the film instead). ``total``: the
+        whole ski's summary if already computed."""
+        t = self.total if total is None else total
         w = self.total_load
         return {
             "mu": (t.dry_force + t.viscous_force) / w,
@@ -208,44 +216,65 @@ def real_contact(
     p = np.asarray(solution.pressure, dtype=np.float64)
     gap = np.asarray(solution.gap, dtype=np.float64)
     da = float(solution.cell_area)
-    inside = np.asarray(solution.footprint, dtype=bool) if p.ndim == 2 else np.ones(p.shape, bool)
     uc = friction.film_cutoff
-    contact = (p > 0) & inside
-    fr = curves.real_fraction(p)
-    frg = curves.real_fraction(p, model="grains")
-    sep_in = curves.mean_separation(p)
-    sep_out = curves.rest_separation(np.where(contact, 0.0, np.maximum(gap, 0.0)))
-    sep = np.where(contact, sep_in, sep_out)
-    rec = np.where(
-        contact,
-        curves.reciprocal_separation(p, uc),
-        curves.rest_reciprocal(np.where(contact, 0.0, gap), uc),
-    )
-    w = inside.astype(np.float64) * da
-    cw = contact.astype(np.float64) * da
+    surface = p.ndim == 2
+    inside = np.asarray(solution.footprint, dtype=bool) if surface else None
+    contact = (p > 0) & inside if surface else p > 0
+    # the curves are evaluated where they apply: in contact at p, elsewhere at the gap
+    flat_contact = contact.ravel()
+    ci = np.flatnonzero(flat_contact)
+    oi = np.flatnonzero((inside & ~contact).ravel() if surface else ~flat_contact)
+    pc = p.ravel()[ci]
+    n = p.size
+    fr, frg, sep_in, rec = (np.zeros(n) for _ in range(4))
+    fr[ci], frg[ci], sep_in[ci], rec[ci] = curves.contact_values(pc, uc)
+    sep = sep_in.copy()
+    go = np.maximum(gap.ravel()[oi], 0.0)
+    sep[oi] = curves.rest_separation(go)
+    rec[oi] = curves.rest_reciprocal(go, uc)
+    beyond = np.zeros(n, dtype=bool)
+    beyond[ci] = curves.beyond(pc)
+    if surface:
+        shape = p.shape
+        w = inside.astype(np.float64) * da
+        cw = contact.astype(np.float64) * da
 
-    def along(v: np.ndarray) -> np.ndarray:
-        return v.sum(axis=1) if v.ndim == 2 else v
+        def along(v: np.ndarray) -> np.ndarray:
+            return (v.reshape(shape) * w).sum(axis=1)
 
-    app = along(cw)
-    load = along(p * w)
-    with np.errstate(invalid="ignore", divide="ignore"):
-        width_area = along(w)
-        pressure = np.where(app > 0, load / np.where(app > 0, app, 1.0), 0.0)
-        mean_sep = along(sep * w) / np.where(width_area > 0, width_area, 1.0)
+        def along_c(v: np.ndarray) -> np.ndarray:
+            return (v.reshape(shape) * cw).sum(axis=1)
+
+        app, width_area = cw.sum(axis=1), w.sum(axis=1)
+        load = (p * w).sum(axis=1)
+        beyond_along = beyond.reshape(shape).any(axis=1)
+    else:  # one cell per station: the per-station values are the cells'
+
+        def along(v: np.ndarray) -> np.ndarray:
+            return v * da
+
+        def along_c(v: np.ndarray) -> np.ndarray:
+            return v * da  # zero off the contact already
+
+        app = flat_contact * da
+        width_area = np.full(n, da)
+        load = p * da
+        beyond_along = beyond
+    pressure = np.divide(load, app, out=np.zeros_like(load), where=app > 0)
+    mean_sep = np.divide(along(sep), width_area, out=np.zeros_like(load), where=width_area > 0)
     return RealContact(
         x=np.asarray(solution.x, dtype=np.float64),
         pressure=pressure,
         apparent_area=app,
-        real_area=along(fr * cw),
-        real_area_grains=along(frg * cw),
-        separation_integral=along(sep_in * cw),
+        real_area=along_c(fr),
+        real_area_grains=along_c(frg),
+        separation_integral=along_c(sep_in),
         mean_separation=mean_sep,
-        reciprocal=along(rec * w),
+        reciprocal=along(rec),
         load=load,
         friction=friction,
         base=curves.base,
         snow=curves.snow,
         total_load=float(solution.load),
-        beyond=along(curves.beyond(p) & contact) > 0,
+        beyond=beyond_along,
     )

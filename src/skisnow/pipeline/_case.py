@@ -10,6 +10,7 @@ them. This module is the only place the chain is written; the sweep's chunk func
 
 from __future__ import annotations
 
+import functools
 import math
 import warnings
 from dataclasses import dataclass, field
@@ -384,6 +385,17 @@ def solve_case(
     )
 
 
+@functools.lru_cache(maxsize=64)
+def _hardness_notes(temperature_c: float, model: str) -> tuple[str, ...]:
+    """The DomainWarnings of the ice hardness at this temperature (once per temperature)."""
+    from skisnow.micro import ice_hardness
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", DomainWarning)
+        ice_hardness(temperature_c, model=model)
+    return tuple(str(w.message) for w in caught if issubclass(w.category, DomainWarning))
+
+
 def _real(solution: Any, media: Any, notes: list[str], real_kw: dict[str, Any]) -> Any:
     """The real contact of a solved case (None without a texture), noting what lies outside a
     model's range: the ice hardness's temperature range, pressures beyond the micro curves."""
@@ -391,10 +403,7 @@ def _real(solution: Any, media: Any, notes: list[str], real_kw: dict[str, Any]) 
 
     if media.base is None:
         return None
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always", DomainWarning)
-        _ = media.snow.hardness
-    notes.extend(str(w.message) for w in caught if issubclass(w.category, DomainWarning))
+    notes.extend(_hardness_notes(media.snow.temperature_c, media.snow.hardness_model))
     real = case_real_contact(solution, media, **real_kw)
     if real.beyond.any():
         notes.append(

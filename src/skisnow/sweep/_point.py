@@ -58,26 +58,21 @@ def solve_point(
     initial_pressure: np.ndarray | None = None,
     profile: tuple[np.ndarray, np.ndarray] | None = None,
     ski: Any = None,
+    media: dict[str, Any] | None = None,
 ):
     """One point of a sweep as a :class:`skisnow.pipeline.Case` (SI units), solved by
     :func:`skisnow.pipeline.solve_case` with the settings of ``spec``.
 
     ``profile`` (x, h) [m] skips computing the loaded profile; ``initial_pressure`` warm-starts
     the contact iteration; ``ski``, the :class:`~skisnow.ski.Ski` of ``ski_name`` if already
-    resolved (a chunk resolves it once, not per mass). Raises :class:`UnsupportedLoadError`
-    where the profile cannot carry the load.
+    resolved (a chunk resolves it once, not per mass); ``media``, the base, snow, micro curves
+    and friction of the real contact if already resolved (:func:`real_media`). Raises
+    :class:`UnsupportedLoadError` where the profile cannot carry the load.
     """
     from skisnow.pipeline import solve_case
 
-    if spec.base:  # the real contact: the textured base and the snow at this modulus
-        media: dict[str, Any] = {
-            "base": spec.texture(),
-            "snow": spec.snow_definition().replace(modulus=float(snow_modulus)),
-            "curves": spec.micro_curves(),
-            "friction": spec.friction_parameters(),
-        }
-    else:
-        media = {"base": spec.base_modulus, "snow_modulus": float(snow_modulus)}
+    if media is None:
+        media = real_media(spec, snow_modulus)
     return solve_case(
         spec.ski(ski_name) if ski is None else ski,
         mass=float(mass),
@@ -93,6 +88,20 @@ def solve_point(
         tol=spec.tol,
         workers=1,  # one FFT thread: parallelism comes from the Dask workers
     )
+
+
+def real_media(spec: SweepSpec, snow_modulus: float) -> dict[str, Any]:
+    """What :func:`skisnow.pipeline.solve_case` needs of the snow and the base at one modulus:
+    with ``spec.base`` the textured base, the snow at this modulus, the micro curves and the
+    friction parameters (the real contact); else the base modulus and the snow modulus."""
+    if not spec.base:
+        return {"base": spec.base_modulus, "snow_modulus": float(snow_modulus)}
+    return {
+        "base": spec.texture(),
+        "snow": spec.snow_definition().replace(modulus=float(snow_modulus)),
+        "curves": spec.micro_curves(),
+        "friction": spec.friction_parameters(),
+    }
 
 
 def contact_chunk(
@@ -142,6 +151,7 @@ def contact_chunk(
         if n_f:
             for name in REAL_FIELD_VARIABLES:
                 out[name] = np.full((n_m, n_f), np.nan)
+    media = real_media(spec, snow_modulus)  # once per chunk: the modulus is the chunk's
     previous: np.ndarray | None = None
     for a, mass in enumerate(spec.masses):
         try:
@@ -155,6 +165,7 @@ def contact_chunk(
                 initial_pressure=previous,
                 profile=profile,
                 ski=ski,
+                media=media,
             )
         except UnsupportedLoadError:
             previous = None
@@ -192,6 +203,7 @@ def _real_point(out: dict[str, np.ndarray], a: int, case: Any, zones: tuple[str,
 
     real = case.real
     summary = real.summarize(zone_station_masks(case, zones))
+    total = summary.get("total")
     for q, name in enumerate(zones):
         r = summary[name]
         out["real_area_mm2"][a, q] = r.real_area * 1e6
@@ -201,7 +213,7 @@ def _real_point(out: dict[str, np.ndarray], a: int, case: Any, zones: tuple[str,
         out["reciprocal_separation_m"][a, q] = r.reciprocal_separation
         out["dry_force_n"][a, q] = r.dry_force
         out["viscous_force_n"][a, q] = r.viscous_force
-    est = real.friction_estimate()
+    est = real.friction_estimate(total)
     out["mu"][a] = est["mu"]
     out["mu_lubricated"][a] = est["mu_lubricated"]
     if n_f:
