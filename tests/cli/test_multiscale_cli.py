@@ -6,6 +6,7 @@ from __future__ import annotations
 import json
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 from skisnow.cli import main
@@ -122,3 +123,15 @@ def test_cycle_and_compare_carry_the_proxies(capsys, texture) -> None:
     assert main(["compare", "skate", "--body-mass-kg", "70", "--snow", "wet",
                  "--proxy", "speed"]) == 2  # fmt: skip
     assert "--proxy" in capsys.readouterr().err
+
+
+def test_micro_curves_command(capsys, tmp_path: Path, texture) -> None:
+    doc = _json(capsys, ["micro-curves", "--base", texture, "--base", "smooth", "--snow",
+                         "machine-made", "--figure", str(tmp_path / "c.png")])  # fmt: skip
+    textured, smooth = doc["curves"]
+    assert smooth["real_fraction"] == [1.0] * len(smooth["real_fraction"])
+    p = np.array(textured["pressure_kpa"]) * 1e3
+    assert np.all(np.array(textured["real_fraction"]) >= p / 15.9e6)  # at least F/H
+    assert (tmp_path / "c.png").is_file()
+    assert main(["micro-curves", "--base", "S3"]) == 2
+    assert "--snow" in capsys.readouterr().err

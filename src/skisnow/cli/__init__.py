@@ -15,6 +15,7 @@ from skisnow.cli import (  # noqa: F401  (registers)
     _explore,
     _identify,
     _micro,
+    _multiscale,
     _network,
     _paper,
     _ski,

@@ -157,6 +157,10 @@ class MicroCurves:
             low = np.where(p > 0, grid_values[0], rest)
         return np.where(p < g[0], low, inside)
 
+    def reciprocal_grid(self, film_cutoff: float) -> np.ndarray:
+        """⟨1/u⟩ [1/m] at the grid's pressures for a film cut-off [m] (the curve's points)."""
+        return self._reciprocal_grid(float(film_cutoff))
+
     @functools.lru_cache(maxsize=8)  # noqa: B019 - a frozen object, a few cut-offs per run
     def _reciprocal_grid(self, film_cutoff: float) -> np.ndarray:
         return reciprocal_from_bins(
