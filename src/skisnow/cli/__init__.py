@@ -4,7 +4,7 @@ Each concern has its own module that adds commands to the shared Typer :data:`ap
 them here registers the commands.
 
 May import: ski, bench, network, identify, contact, micro, pipeline, sweep, paper, workflows,
-explore, plot, report, calibrate
+explore, plot, report, calibrate, snow, multiscale
 """
 
 from skisnow.cli import (  # noqa: F401  (registers)

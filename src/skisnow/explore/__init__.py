@@ -8,7 +8,7 @@ base and the deformed snow, the pressure with the zones shaded, the zone table a
 8/9-style maps with the current point marked. No server, no network, no CDN. The page's zone
 palette and colour map come from :mod:`skisnow.plot`, embedded in its data (one palette).
 
-May import: sweep, plot
+May import: sweep, plot, snow
 """
 
 from skisnow.explore._data import (

@@ -15,6 +15,8 @@ Kalliorinne et al. (2023, Lubricants 11(10) 427) couple the apparent pressure p(
 * :class:`FrictionParameters` — τ, η, v, film cut-off with their cited defaults; the dry
   (τ·A_r) and viscous (η·v·∫1/u dA) proxies and µ = F/W with its assumptions;
 * :func:`real_table`, :func:`rank_real`, :data:`PROXIES` — skis × bases on one snow, ranked.
+
+May import: contact, micro, snow
 """
 
 from skisnow.multiscale._along import RealContact, RealSummary, real_contact

@@ -13,7 +13,7 @@ the running surface, both ends included (:func:`stations`), each the centre of o
 ...                   snow_modulus=100e6)                           # doctest: +SKIP
 >>> case.zones["rear"].length, case.breitschaedel["total"].length   # doctest: +SKIP
 
-May import: ski, bench, network, contact
+May import: ski, bench, network, contact, micro, snow, multiscale
 
 Kept for compatibility; the home of what the report of a ski shows (MAP_MASSES, MAP_MODULI,
 STANDARD_SNOWS, SkiStudy, standard_cases, study_ski: metrics, the cases at the standard loads,

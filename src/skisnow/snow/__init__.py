@@ -9,6 +9,8 @@ sizes (micro), density → modulus; presets for the snow types a technician name
   sources and ranges (:func:`snow_preset`);
 * :func:`get_snow` (a preset name or a file), :func:`read_snow`, :func:`write_snow`,
   :func:`snow_record`.
+
+May import: micro
 """
 
 from skisnow.snow._file import (

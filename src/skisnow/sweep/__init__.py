@@ -11,7 +11,7 @@ snow_modulus_mpa, zone`` written chunk by chunk into a Zarr store (see :mod:`._s
 >>> run_sweep(spec, "fig8.zarr")                                          # doctest: +SKIP
 >>> ds = open_sweep("fig8.zarr")                                          # doctest: +SKIP
 
-May import: ski, pipeline
+May import: ski, pipeline, snow, multiscale
 """
 
 from skisnow.sweep._fields import block_mean, station_fields, zone_codes
