@@ -2,8 +2,8 @@
 
 References (each test names its own): Westergaard's elastic wavy contact and the
 rigid–perfectly-plastic truncated sinusoid of :mod:`skisnow.micro.reference` (both checked on
-their own in ``test_wavy_reference.py``); the purely plastic limit A = F/H of a stiff body on a grind;
-Johnson's periodic indentation 2p/(E*q). E* = E'/2 (skisnow's equivalent modulus is twice
+their own in ``test_wavy_reference.py``); the purely plastic limit A = F/H of a stiff body on a
+grind; Johnson's periodic indentation 2p/(E*q). E* = E'/2 (skisnow's equivalent modulus is twice
 Johnson's contact modulus).
 """
 
