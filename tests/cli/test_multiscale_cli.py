@@ -94,7 +94,7 @@ def test_sweep_stores_the_real_contact(capsys, tmp_path: Path, texture) -> None:
 
     out = tmp_path / "s.zarr"
     args = ["sweep", "--ski", "skate", "--out", str(out), "--mass-kg", "40,70", "--snow",
-            "machine-made", "--base", texture, "--workers", "0", "--n-points", "1024"]  # fmt: skip
+            "machine-made", "--base", texture, "--workers", "0", "--points", "1024"]  # fmt: skip
     assert main(args) == 0
     capsys.readouterr()
     ds = open_sweep(out)

@@ -10,7 +10,6 @@ them. This module is the only place the chain is written; the sweep's chunk func
 
 from __future__ import annotations
 
-import functools
 import math
 import warnings
 from dataclasses import dataclass, field
@@ -139,7 +138,7 @@ class Case:
         :func:`skisnow.pipeline._real.station_masks`)."""
         from skisnow.pipeline._real import station_masks
 
-        return station_masks(self.solution.x, self.solution.pressure, kick_zone=self.kick_zone)
+        return station_masks(self)
 
     def real_summary(self) -> dict[str, RealSummary]:
         """The real contact per region and patch and in total (needs a base with a texture
@@ -289,7 +288,7 @@ def solve_case(
         The profile cannot carry the load (e.g. the contact would reach an end of the ski).
     """
     from skisnow.contact import BASE, contact_zones, effective_modulus, solve_contact
-    from skisnow.pipeline._real import resolve_media
+    from skisnow.pipeline._real import case_real, resolve_media
 
     m, xm = _check_inputs(mass, load_position, model)
     if ski_model not in SKI_MODELS:
@@ -355,7 +354,7 @@ def solve_case(
         workers=workers,
     )
     zones = contact_zones(solution, kick_zone=kick_zone)
-    real = _real(solution, media, notes, real_kw)
+    real = case_real(solution, media, notes, real_kw)
     if not solution.converged:
         notes.append(
             f"contact solver did not converge in {solution.iterations} iterations "
@@ -385,34 +384,6 @@ def solve_case(
     )
 
 
-@functools.lru_cache(maxsize=64)
-def _hardness_notes(temperature_c: float, model: str) -> tuple[str, ...]:
-    """The DomainWarnings of the ice hardness at this temperature (once per temperature)."""
-    from skisnow.micro import ice_hardness
-
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always", DomainWarning)
-        ice_hardness(temperature_c, model=model)
-    return tuple(str(w.message) for w in caught if issubclass(w.category, DomainWarning))
-
-
-def _real(solution: Any, media: Any, notes: list[str], real_kw: dict[str, Any]) -> Any:
-    """The real contact of a solved case (None without a texture), noting what lies outside a
-    model's range: the ice hardness's temperature range, pressures beyond the micro curves."""
-    from skisnow.pipeline._real import case_real_contact
-
-    if media.base is None:
-        return None
-    notes.extend(_hardness_notes(media.snow.temperature_c, media.snow.hardness_model))
-    real = case_real_contact(solution, media, **real_kw)
-    if real.beyond.any():
-        notes.append(
-            f"apparent pressure above the micro curves' last point at {int(real.beyond.sum())} "
-            "station(s): the real contact there is held at that point's values"
-        )
-    return real
-
-
 #: Physical range of the snow (counter-surface) modulus of a flexible case [Pa]: from the
 #: softest snow to stone; outside it the value is a unit slip (MPa given as Pa).
 SNOW_MODULUS_LIMITS: tuple[float, float] = (1e6, 1e12)
@@ -437,6 +408,7 @@ def _flexible_case(
 ) -> Case:
     """The flexible ski on elastic snow: beam and half-space in one solve (no loaded profile)."""
     from skisnow.contact import BASE, contact_zones, effective_modulus, solve_flexible
+    from skisnow.pipeline._real import case_real
 
     if ski is None or profile is not None:
         raise InputError(
@@ -473,7 +445,7 @@ def _flexible_case(
     )
     solution = flex.contact
     notes: list[str] = []
-    real = _real(solution, media, notes, real_kw)
+    real = case_real(solution, media, notes, real_kw)
     if not flex.converged:
         notes.append(f"flexible solve did not converge: {solution.message}")
     zones = contact_zones(solution, kick_zone=s.kick_zone)

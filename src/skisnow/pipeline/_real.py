@@ -5,23 +5,25 @@ material of eq. 2, the base material of eq. 2, and — when the base carries a t
 :class:`~skisnow.multiscale.Base`, ``'S3'``, ``'smooth'``, a topography file) and a snow is
 given — the micro curves of that base × snow. :func:`case_real_contact` then evaluates them on
 the apparent contact (:func:`skisnow.multiscale.real_contact`). :func:`station_masks` gives the
-station masks the real contact is summarised over: regions fixed by the ski (rear glide / kick
-zone / front glide for a classic; rear / front glide split at the balance point otherwise) and
-every contact patch — the two views of issue 26; once its regions are in
-:mod:`skisnow.contact`, the masks come from there.
+station masks the real contact is summarised over: the regions fixed by the ski and every
+contact patch — the two views of the apparent contact's footprint
+(:func:`skisnow.contact.footprint`), taken from it.
 """
 
 from __future__ import annotations
 
+import functools
+import warnings
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
-from skisnow._errors import InputError
+from skisnow._errors import DomainWarning, InputError
 
 __all__ = [
     "Media",
+    "case_real",
     "case_real_contact",
     "resolve_media",
     "station_masks",
@@ -115,52 +117,65 @@ def case_real_contact(
     return real_contact(solution, c, resolved)
 
 
-#: Region names (tail → tip), as issue 26's regions will name them in skisnow.contact.
-REGIONS_CLASSIC: tuple[str, str, str] = ("rear_glide", "kick_zone", "front_glide")
-REGIONS_SPLIT: tuple[str, str] = ("rear_glide", "front_glide")
+@functools.lru_cache(maxsize=64)
+def _hardness_notes(temperature_c: float, model: str) -> tuple[str, ...]:
+    """The DomainWarnings of the ice hardness at this temperature (once per temperature)."""
+    from skisnow.micro import ice_hardness
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", DomainWarning)
+        ice_hardness(temperature_c, model=model)
+    return tuple(str(w.message) for w in caught if issubclass(w.category, DomainWarning))
 
 
-def station_masks(
-    x: np.ndarray,
-    pressure: np.ndarray,
-    *,
-    kick_zone: tuple[float, float] | None,
-    split: float = 0.0,
-) -> dict[str, np.ndarray]:
-    """Boolean station masks: ``total``; the regions fixed by the ski — ``rear_glide``,
-    ``kick_zone``, ``front_glide`` (a station on a mark belongs to the kick zone) for a classic,
-    else ``rear_glide``/``front_glide`` split at ``split`` (default the balance point, x = 0; a
-    station on it belongs to the front); and ``patch 1``… for every contiguous run of stations
-    in contact, from the tail. The regions partition the ski; the patches hold its contact."""
-    from skisnow.contact import patches
+def case_real(solution: Any, media: Any, notes: list[str], real_kw: dict[str, Any]) -> Any:
+    """The real contact of a solved case (None without a texture), noting what lies outside a
+    model's range: the ice hardness's temperature range, pressures beyond the micro curves."""
+    if media.base is None:
+        return None
+    notes.extend(_hardness_notes(media.snow.temperature_c, media.snow.hardness_model))
+    real = case_real_contact(solution, media, **real_kw)
+    if real.beyond.any():
+        notes.append(
+            f"apparent pressure above the micro curves' last point at {int(real.beyond.sum())} "
+            "station(s): the real contact there is held at that point's values"
+        )
+    return real
 
-    x = np.asarray(x)
-    along = np.asarray(pressure)
-    along = along.any(axis=1) if along.ndim == 2 else along > 0
+
+def station_masks(case: Any) -> dict[str, np.ndarray]:
+    """Boolean station masks of a solved case: ``total``; the regions fixed by the ski, as the
+    apparent contact reports them (``case.zones.footprint``: ``rear_glide``, ``kick_zone``,
+    ``front_glide`` between the kick-zone marks, or rear/front glide split at the balance point;
+    :func:`skisnow.contact.region_index`); and ``patch 1``… — every contiguous contact patch of
+    the footprint, from the tail. The regions partition the ski; the patches hold its contact."""
+    from skisnow.contact import region_index
+
+    x = np.asarray(case.solution.x)
+    fp = case.zones.footprint
     masks: dict[str, np.ndarray] = {"total": np.ones(x.shape, dtype=bool)}
-    if kick_zone is not None:
-        k0, k1 = kick_zone
-        masks["rear_glide"] = x < k0
-        masks["kick_zone"] = (x >= k0) & (x <= k1)
-        masks["front_glide"] = x > k1
-    else:
-        masks["rear_glide"] = x < split
-        masks["front_glide"] = x >= split
-    for k, (i, j) in enumerate(patches(along), start=1):
-        m = np.zeros(x.shape, dtype=bool)
-        m[i : j + 1] = True
-        masks[f"patch {k}"] = m
+    idx = region_index(x, fp.marks)
+    for k, name in enumerate(fp.names):
+        masks[name] = idx == k
+    for k, patch in enumerate(fp.patches, start=1):
+        masks[f"patch {k}"] = (x >= patch.start) & (x <= patch.end)
     return masks
 
 
 def zone_station_masks(case: Any, names: tuple[str, ...]) -> dict[str, np.ndarray]:
-    """Station masks of contact zones (the sweep's zone dimension): the stations inside a
-    zone's contact intervals; ``total`` is the whole ski."""
+    """Station masks of the sweep's zone dimension: a region (``rear_glide``, ``kick_zone``,
+    ``front_glide``) is all its stations (:func:`station_masks`); a paper zone (``rear``,
+    ``middle``, ``front``, ``kick``) the stations inside its contact intervals; ``total`` the
+    whole ski."""
     x = np.asarray(case.solution.x)
+    regions = station_masks(case)
     out: dict[str, np.ndarray] = {}
     for name in names:
-        if name == "total":
-            out[name] = np.ones(x.shape, dtype=bool)
+        if name in regions:
+            out[name] = regions[name]
+            continue
+        if name in ("rear_glide", "kick_zone", "front_glide"):  # a region this ski lacks
+            out[name] = np.zeros(x.shape, dtype=bool)
             continue
         m = np.zeros(x.shape, dtype=bool)
         for lo, hi in case.zones[name].intervals:
