@@ -393,7 +393,7 @@ def real_rows(summary: dict[str, Any]) -> list[list[Any]]:
     for name, s in summary.items():
         rows.append(
             [
-                name,
+                name.replace("_", " "),
                 s.apparent_area * 1e4,
                 s.load / s.apparent_area * 1e-3 if s.apparent_area > 0 else None,
                 s.real_area * 1e6,
