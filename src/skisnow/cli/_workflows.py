@@ -185,8 +185,7 @@ def compare(
     A ski that cannot be read is named on stderr and left out; the others are compared (exit 2,
     bad input, when any was left out).
     """
-    from skisnow.multiscale import PROXIES
-    from skisnow.workflows import CRITERIA, compare_fleet, rank_across_snow
+    from skisnow.workflows import CRITERIA, PROXIES, compare_fleet, rank_across_snow
 
     _check_positive("--body-mass-kg", body_mass_kg)
     snow_obj, e = resolve_snow(snow, snow_modulus_mpa, temperature_c=snow_temperature_c)
@@ -248,7 +247,7 @@ def compare(
     notes = [e.route_note for e in cmp.entries if e.route_note]
     real_records, real_ranking = [], []
     if base:
-        from skisnow.multiscale import rank_real, real_table
+        from skisnow.workflows import rank_real, real_table
 
         with progress_bar("real contact (micro curves per base)", disable=json_out):
             real_records = real_table(

@@ -13,8 +13,7 @@ Kalliorinne et al. (2023, Lubricants 11(10) 427) couple the apparent pressure p(
 * :class:`RealContact`, :func:`real_contact` — the curves at p(x): real area, separation,
   ∫1/u dA per station, summarised over any station masks (:meth:`RealContact.summarize`);
 * :class:`FrictionParameters` — τ, η, v, film cut-off with their cited defaults; the dry
-  (τ·A_r) and viscous (η·v·∫1/u dA) proxies and µ = F/W with its assumptions;
-* :func:`real_table`, :func:`rank_real`, :data:`PROXIES` — skis × bases on one snow, ranked.
+  (τ·A_r) and viscous (η·v·∫1/u dA) proxies and µ = F/W with its assumptions.
 
 May import: contact, micro, snow
 """
@@ -37,7 +36,6 @@ from skisnow.multiscale._friction import (
     ResolvedFriction,
     water_viscosity,
 )
-from skisnow.multiscale._rank import PROXIES, Proxy, rank_real, real_table
 
 __all__ = [
     "CURVES_FORMAT",
@@ -46,20 +44,16 @@ __all__ = [
     "DEFAULT_PIXEL",
     "DEFAULT_PRESSURES",
     "DEFAULT_SLIDING_SPEED",
-    "PROXIES",
     "SMOOTH_NAMES",
     "Base",
     "FrictionParameters",
     "MicroCurves",
-    "Proxy",
     "RealContact",
     "RealSummary",
     "ResolvedFriction",
     "cache_dir",
     "make_base",
     "micro_curves",
-    "rank_real",
     "real_contact",
-    "real_table",
     "water_viscosity",
 ]

@@ -12,11 +12,14 @@ the elastic half-space with force and moment balance (eq. 2–3), grouped into z
 * load cycles: :class:`LoadHistory`, :func:`read_load_history`, :data:`TEMPLATES`,
   :func:`template_history`, :func:`run_cycle` (an xarray Dataset over time),
   :func:`kick_contact_summary`; with a base texture, the friction proxies over the stride,
-  :func:`real_cycle_summary`.
+  :func:`real_cycle_summary`;
+* skis × bases on one snow: :func:`real_table`, :func:`rank_real` by a proxy of
+  :data:`PROXIES`.
 
 May import: ski, bench, network, identify, pipeline, multiscale, snow
 """
 
+from skisnow.workflows._bases import PROXIES, Proxy, rank_real, real_table
 from skisnow.workflows._cycle import (
     UNLOADED_MASS,
     ZONES,
@@ -61,6 +64,7 @@ __all__ = [
     "DEFAULT_LOAD_POSITION",
     "MAX_GAP_FACTOR",
     "POOR_MATCH_DISTANCE",
+    "PROXIES",
     "STIFFNESS_TOLERANCE",
     "TEMPLATES",
     "UNLOADED_MASS",
@@ -73,6 +77,7 @@ __all__ = [
     "LoadHistory",
     "PairDistance",
     "Pairing",
+    "Proxy",
     "SnowRanking",
     "check_positions",
     "compare_fleet",
@@ -81,8 +86,10 @@ __all__ = [
     "match_pairs",
     "pair_distance",
     "rank_across_snow",
+    "rank_real",
     "read_load_history",
     "real_cycle_summary",
+    "real_table",
     "resolve_fleet",
     "resolve_ski",
     "run_cycle",

@@ -2,10 +2,11 @@
 
 The apparent contact does not depend on the texture (every :class:`~skisnow.multiscale.Base`
 of a comparison has the same macro base material), so each ski is solved once per load and the
-micro curves of every base × snow are evaluated on its pressure (:func:`real_contact`). A
-ranking compares one proxy; the ties a measurement's uncertainty would make are not modelled
-here (the proxies are deterministic functions of the inputs; see the validation pages for
-what they are worth).
+micro curves of every base × snow are evaluated on its pressure
+(:func:`skisnow.multiscale.real_contact`). The ranking follows the fleet's rule
+(:func:`~skisnow.workflows.competition_ranks`: 1 + the entries strictly better, ties share a
+rank); the proxies are deterministic, so entries tie only when equal, until uncertainty
+intervals (issue 25) are plugged into the same rule.
 """
 
 from __future__ import annotations
@@ -75,10 +76,7 @@ def real_table(
     apparent contact at the load of interest); ``bases`` are what
     :func:`~skisnow.multiscale.make_base` accepts; ``snow`` a :class:`~skisnow.snow.Snow`.
     """
-    from skisnow.multiscale._along import real_contact
-    from skisnow.multiscale._base import make_base
-    from skisnow.multiscale._curves import micro_curves
-    from skisnow.multiscale._friction import FrictionParameters
+    from skisnow.multiscale import FrictionParameters, make_base, micro_curves, real_contact
 
     if not bases:
         raise InputError("no base to compare")
@@ -106,14 +104,21 @@ def real_table(
 
 
 def rank_real(records: Sequence[dict[str, Any]], proxy: str) -> list[dict[str, Any]]:
-    """The records from best to worst by ``proxy`` (a key of :data:`PROXIES`; NaN last)."""
+    """The records from best to worst by ``proxy`` (a key of :data:`PROXIES`; NaN last), with
+    competition ranks (ties share a rank) and the entries each ties with."""
+    from skisnow.workflows._ties import competition_ranks, tied_with
+
     if proxy not in PROXIES:
         raise InputError(f"unknown proxy {proxy!r}; choose one of {', '.join(PROXIES)}")
     p = PROXIES[proxy]
     v = np.array([float(r[p.column]) for r in records])
+    ranks = competition_ranks(v, better=p.better)
+    ties = tied_with(v, better=p.better)
     key = np.where(np.isnan(v), np.inf, v if p.better == "lower" else -v)
     order = np.argsort(key, kind="stable")
+    label = [f"{r['ski']} × {r['base']}" for r in records]
     return [
-        {"rank": k + 1, "ski": records[i]["ski"], "base": records[i]["base"], p.column: v[i]}
-        for k, i in enumerate(order)
-    ]
+        {"rank": int(ranks[i]), "ski": records[i]["ski"], "base": records[i]["base"],
+         p.column: v[i], "ties_with": [label[j] for j in ties[i]]}
+        for i in order
+    ]  # fmt: skip
