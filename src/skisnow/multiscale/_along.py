@@ -226,9 +226,9 @@ def real_contact(
     oi = np.flatnonzero((inside & ~contact).ravel() if surface else ~flat_contact)
     pc = p.ravel()[ci]
     n = p.size
-    fr, frg, sep_in, rec = (np.zeros(n) for _ in range(4))
+    fr, frg, sep_in, sep, rec = np.zeros((5, n))
     fr[ci], frg[ci], sep_in[ci], rec[ci] = curves.contact_values(pc, uc)
-    sep = sep_in.copy()
+    sep[ci] = sep_in[ci]
     go = np.maximum(gap.ravel()[oi], 0.0)
     sep[oi] = curves.rest_separation(go)
     rec[oi] = curves.rest_reciprocal(go, uc)

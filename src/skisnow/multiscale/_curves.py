@@ -223,10 +223,16 @@ class MicroCurves:
         """⟨1/max(G + h_max − h, u_c)⟩ [1/m] at macroscopic gaps G [m] (tabulated, log-log)."""
         g_grid, r_grid = self._rest_table(float(film_cutoff))
         g = np.maximum(np.asarray(gap, dtype=np.float64), 0.0)
-        out = np.exp(
-            np.interp(np.log(np.maximum(g, g_grid[1])), np.log(g_grid[1:]), np.log(r_grid[1:]))
-        )
-        return np.where(g <= g_grid[1], np.interp(g, g_grid[:2], r_grid[:2]), out)
+        lg = np.log(np.maximum(g, g_grid[1]))
+        out = np.exp(np.interp(lg, self._rest_log_grid, np.log(r_grid[1:])))
+        small = g <= g_grid[1]  # below 0.1 nm: linear from G = 0 (rare: the patch edges)
+        if np.any(small):
+            out = np.where(small, np.interp(g, g_grid[:2], r_grid[:2]), out)
+        return out
+
+    @functools.cached_property
+    def _rest_log_grid(self) -> np.ndarray:
+        return np.log(np.geomspace(1e-10, 1.0, 401))
 
     @functools.lru_cache(maxsize=8)  # noqa: B019
     def _rest_table(self, film_cutoff: float) -> tuple[np.ndarray, np.ndarray]:
