@@ -174,41 +174,50 @@ class MicroCurves:
         :meth:`mean_separation` and :meth:`reciprocal_separation` give them (one search in the
         grid for the four: the along-ski evaluation of every station of every case)."""
         p = np.asarray(pressure, dtype=np.float64)
-        table = self._contact_table(float(film_cutoff))
-        lg = np.log(self.pressures)
-        x = np.clip(np.log(np.maximum(p, 1e-300)), lg[0], lg[-1])
-        i = np.clip(np.searchsorted(lg, x, side="right") - 1, 0, lg.size - 2)
+        table, r0 = self._contact_table(float(film_cutoff))
+        lg = self._log_pressures
+        x = np.log(np.clip(p, self.pressures[0], self.pressures[-1]))
+        i = np.searchsorted(lg, x, side="right") - 1
+        np.clip(i, 0, lg.size - 2, out=i)
         w = ((x - lg[i]) / (lg[i + 1] - lg[i]))[:, None]
-        v = table[i] * (1.0 - w) + table[i + 1] * w
-        fr, frg = np.minimum(np.exp(v[:, 0]), 1.0), np.minimum(np.exp(v[:, 1]), 1.0)
+        v = table[i]
+        v += (table[i + 1] - v) * w
+        fr = np.exp(v[:, 0])
+        frg = np.exp(v[:, 1])
         sep, rec = v[:, 2], v[:, 3]
         low = p < self.pressures[0]
         if low.any():
             t = p[low] / self.pressures[0]
-            fr[low] = np.minimum(np.exp(table[0, 0]) * t, 1.0)
-            frg[low] = np.minimum(np.exp(table[0, 1]) * t, 1.0)
+            fr[low] = np.exp(table[0, 0]) * t
+            frg[low] = np.exp(table[0, 1]) * t
             if self.smooth:
                 sep[low], rec[low] = table[0, 2], table[0, 3]
             else:
                 sep[low] = self.rest_mean + (table[0, 2] - self.rest_mean) * t
-                r0 = float(self.rest_reciprocal(0.0, film_cutoff))
                 rec[low] = r0 + (table[0, 3] - r0) * t
+        np.minimum(fr, 1.0, out=fr)
+        np.minimum(frg, 1.0, out=frg)
         if self.smooth:
             fr[:] = 1.0
         return fr, frg, sep, rec
 
+    @functools.cached_property
+    def _log_pressures(self) -> np.ndarray:
+        return np.log(self.pressures)
+
     @functools.lru_cache(maxsize=8)  # noqa: B019
-    def _contact_table(self, film_cutoff: float) -> np.ndarray:
+    def _contact_table(self, film_cutoff: float) -> tuple[np.ndarray, float]:
         """Columns on the pressure grid: log A_r/A (flat ice), log A_r/A (grains, interpolated
-        log-log from its sub-grid), ū, ⟨1/u⟩ at ``film_cutoff``."""
+        log-log from its sub-grid), ū, ⟨1/u⟩ at ``film_cutoff``; and ⟨1/u⟩ at zero load."""
         grains = np.exp(
             _interp_log(self.pressures, self.bearing_pressures, np.log(self.bearing_fraction))
         )
         flat = np.maximum(self.real_fractional_area, 1e-300)
-        return np.column_stack([
+        table = np.column_stack([
             np.log(flat), np.log(grains), self.mean_separation_grid,
             self._reciprocal_grid(film_cutoff),
         ])  # fmt: skip
+        return table, float(self.rest_reciprocal(0.0, film_cutoff))
 
     def beyond(self, pressure: np.ndarray) -> np.ndarray:
         """Where p lies above the grid's last pressure (values held there)."""
