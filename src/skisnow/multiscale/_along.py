@@ -139,6 +139,26 @@ class RealContact:
         area = self.real_area if f.area_model == "flat-ice" else self.real_area_grains
         return f.viscosity * f.sliding_speed * area / f.film_cutoff
 
+    #: The columns of :meth:`sums`, in order.
+    SUM_COLUMNS: tuple[str, ...] = (
+        "load", "apparent_area", "real_area", "real_area_grains", "separation_integral",
+        "reciprocal_separation", "dry_force", "viscous_force", "lubricated_force",
+    )  # fmt: skip
+
+    def sums(self, masks: np.ndarray) -> np.ndarray:
+        """``(k, 9)`` sums of :attr:`SUM_COLUMNS` over ``k`` station masks ``(k, n)`` (bool or
+        0/1): one matrix product for every mask and quantity."""
+        f = self.friction
+        grains = f.area_model != "flat-ice"
+        area = self.real_area_grains if grains else self.real_area
+        vv = f.viscosity * f.sliding_speed
+        q = np.stack([
+            self.load, self.apparent_area, self.real_area, self.real_area_grains,
+            self.separation_integral, self.reciprocal, f.shear_strength * area,
+            vv * self.reciprocal, (vv / f.film_cutoff) * area,
+        ])  # fmt: skip
+        return np.asarray(masks, dtype=np.float64) @ q.T
+
     def summarize(self, masks: Mapping[str, np.ndarray]) -> dict[str, RealSummary]:
         """The real contact of every named set of stations (boolean masks over :attr:`x`)."""
         names = list(masks)
@@ -148,12 +168,7 @@ class RealContact:
             if mk.shape != self.x.shape:
                 raise InputError(f"mask {name!r} has shape {mk.shape}; stations: {self.x.shape}")
             m[k] = mk
-        q = np.stack([
-            self.load, self.apparent_area, self.real_area, self.real_area_grains,
-            self.separation_integral, self.reciprocal, self.dry_force, self.viscous_force,
-            self.lubricated_force,
-        ])  # fmt: skip
-        sums = m @ q.T  # one product for every mask and quantity
+        sums = self.sums(m)
         counts = m.sum(axis=1)
         out: dict[str, RealSummary] = {}
         for k, name in enumerate(names):

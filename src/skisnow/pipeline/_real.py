@@ -143,12 +143,13 @@ def case_real(solution: Any, media: Any, notes: list[str], real_kw: dict[str, An
     return real
 
 
-def station_masks(case: Any) -> dict[str, np.ndarray]:
+def station_masks(case: Any, *, patches: bool = True) -> dict[str, np.ndarray]:
     """Boolean station masks of a solved case: ``total``; the regions fixed by the ski, as the
     apparent contact reports them (``case.zones.footprint``: ``rear_glide``, ``kick_zone``,
     ``front_glide`` between the kick-zone marks, or rear/front glide split at the balance point;
-    :func:`skisnow.contact.region_index`); and ``patch 1``… — every contiguous contact patch of
-    the footprint, from the tail. The regions partition the ski; the patches hold its contact."""
+    :func:`skisnow.contact.region_index`); and (``patches``) ``patch 1``… — every contiguous
+    contact patch of the footprint, from the tail. The regions partition the ski; the patches
+    hold its contact."""
     from skisnow.contact import region_index
 
     x = np.asarray(case.solution.x)
@@ -157,8 +158,9 @@ def station_masks(case: Any) -> dict[str, np.ndarray]:
     idx = region_index(x, fp.marks)
     for k, name in enumerate(fp.names):
         masks[name] = idx == k
-    for k, patch in enumerate(fp.patches, start=1):
-        masks[f"patch {k}"] = (x >= patch.start) & (x <= patch.end)
+    if patches:
+        for k, patch in enumerate(fp.patches, start=1):
+            masks[f"patch {k}"] = (x >= patch.start) & (x <= patch.end)
     return masks
 
 
@@ -168,17 +170,16 @@ def zone_station_masks(case: Any, names: tuple[str, ...]) -> dict[str, np.ndarra
     ``middle``, ``front``, ``kick``) the stations inside its contact intervals; ``total`` the
     whole ski."""
     x = np.asarray(case.solution.x)
-    regions = station_masks(case)
+    regions = station_masks(case, patches=False)
     out: dict[str, np.ndarray] = {}
     for name in names:
         if name in regions:
             out[name] = regions[name]
-            continue
-        if name in ("rear_glide", "kick_zone", "front_glide"):  # a region this ski lacks
+        elif name in ("rear_glide", "kick_zone", "front_glide"):  # a region this ski lacks
             out[name] = np.zeros(x.shape, dtype=bool)
-            continue
-        m = np.zeros(x.shape, dtype=bool)
-        for lo, hi in case.zones[name].intervals:
-            m |= (x >= lo) & (x <= hi)
-        out[name] = m
+        else:
+            m = np.zeros(x.shape, dtype=bool)
+            for lo, hi in case.zones[name].intervals:
+                m[np.searchsorted(x, lo, "left") : np.searchsorted(x, hi, "right")] = True
+            out[name] = m
     return out

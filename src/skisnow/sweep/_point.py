@@ -197,30 +197,36 @@ def contact_chunk(
 
 def _real_point(out: dict[str, np.ndarray], a: int, case: Any, zones: tuple[str, ...],
                 n_f: int) -> None:  # fmt: skip
-    """The real contact of one point: per zone (its contact stations; ``total`` the whole ski)
-    and, with fields, the real fraction and separation on the display stations."""
+    """The real contact of one point: per zone (a region: all its stations; a paper zone: its
+    contact stations; ``total`` the whole ski) and, with fields, the real fraction and
+    separation on the display stations."""
     from skisnow.pipeline import zone_station_masks
 
     real = case.real
-    summary = real.summarize(zone_station_masks(case, zones))
-    total = summary.get("total")
-    for q, name in enumerate(zones):
-        r = summary[name]
-        out["real_area_mm2"][a, q] = r.real_area * 1e6
-        out["real_area_grains_mm2"][a, q] = r.real_area_grains * 1e6
-        out["real_fraction"][a, q] = r.real_fraction
-        out["mean_separation_um"][a, q] = r.mean_separation * 1e6
-        out["reciprocal_separation_m"][a, q] = r.reciprocal_separation
-        out["dry_force_n"][a, q] = r.dry_force
-        out["viscous_force_n"][a, q] = r.viscous_force
-    est = real.friction_estimate(total)
-    out["mu"][a] = est["mu"]
-    out["mu_lubricated"][a] = est["mu_lubricated"]
+    masks = zone_station_masks(case, zones)
+    sums = real.sums(np.array([masks[z] for z in zones]))  # (zone, column)
+    _, app, real_a, grains, sep, recip, dry, visc, lub = sums.T
+    with np.errstate(invalid="ignore", divide="ignore"):
+        out["real_fraction"][a] = np.where(app > 0, real_a / app, np.nan)
+        out["mean_separation_um"][a] = np.where(app > 0, sep / app, np.nan) * 1e6
+    out["real_area_mm2"][a] = real_a * 1e6
+    out["real_area_grains_mm2"][a] = grains * 1e6
+    out["reciprocal_separation_m"][a] = recip
+    out["dry_force_n"][a] = dry
+    out["viscous_force_n"][a] = visc
+    t = zones.index("total") if "total" in zones else None
+    if t is None:
+        est = real.friction_estimate()
+        out["mu"][a], out["mu_lubricated"][a] = est["mu"], est["mu_lubricated"]
+    else:
+        w = real.total_load
+        out["mu"][a] = (dry[t] + visc[t]) / w
+        out["mu_lubricated"][a] = (lub[t] + visc[t]) / w
     if n_f:
         from skisnow.sweep._fields import block_mean
 
-        app = block_mean(real.apparent_area, n_f)
+        app_f = block_mean(real.apparent_area, n_f)
         with np.errstate(invalid="ignore", divide="ignore"):
-            frac = np.where(app > 0, block_mean(real.real_area, n_f) / app, np.nan)
+            frac = np.where(app_f > 0, block_mean(real.real_area, n_f) / app_f, np.nan)
         out["real_fraction_percent"][a] = 100 * frac
         out["separation_um"][a] = block_mean(real.mean_separation, n_f) * 1e6
