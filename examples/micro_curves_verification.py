@@ -2,7 +2,7 @@
 contact (:func:`skisnow.micro.elastoplastic_curve`, mirror-continued half-space) against its
 analytic limits and under refinement of the topography grid.
 
-    uv run python examples/micro_curves_verification.py        # ~1 min
+    uv run python examples/micro_curves_verification.py [--out DIR]    # ~1 min
 
 Rows: (1) light load, purely elastic: Westergaard's wavy surface (contact width, mean gap);
 (2) full plastic flow, rigid body: the truncated sinusoid (A = F/H, mean and reciprocal
@@ -15,6 +15,7 @@ from __future__ import annotations
 
 import math
 import os
+from pathlib import Path
 
 import numpy as np
 
@@ -24,6 +25,7 @@ def main() -> None:
 
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--small", action="store_true", help="refinement down to 2 µm only")
+    ap.add_argument("--out", type=Path, default=None, help="folder for the two tables (CSV)")
     args = ap.parse_args()
     os.environ.setdefault("COLUMNS", "160")
     from skisnow.cli._render import print_table
@@ -100,6 +102,15 @@ def main() -> None:
             ref_rows.append([k, f"{p / 1e3:g}", t.shape[0], c.mean_separation[i] * 1e6,
                              c.fractional_area[i] / (p / hard), c.plastic_fraction[i],
                              r[i] * 1e-6, int(c.iterations[i])])  # fmt: skip
+    if args.out is not None:
+        from skisnow.cli._workflows import write_csv
+
+        hdr = ["case", "quantity", "skisnow", "reference", "relative_difference"]
+        write_csv(args.out / "references.csv", [dict(zip(hdr, r, strict=True)) for r in rows])
+        hdr = ["pixel_um", "p_kpa", "grid", "mean_separation_um", "area_over_p_over_h",
+               "plastic_share", "reciprocal_per_um", "iterations"]  # fmt: skip
+        write_csv(args.out / "refinement.csv", [dict(zip(hdr, r, strict=True)) for r in ref_rows])
+        print(f"wrote {args.out / 'references.csv'}, {args.out / 'refinement.csv'}")
     print_table(
         "Refinement: S3 stand-in, 0.4 mm map after the 33 µm low-pass, ice on UHMWPE at -2 °C",
         ["pixel [µm]", "p [kPa]", "grid", "ū [µm]", "A/(A₀·p/H)", "plastic share",

@@ -26,7 +26,9 @@ def test_findings_example(monkeypatch, capsys, tmp_path: Path) -> None:
 
 
 @pytest.mark.slow
-def test_verification_example(monkeypatch, capsys) -> None:
-    _run("micro_curves_verification.py", ["--small"], monkeypatch)
+def test_verification_example(monkeypatch, capsys, tmp_path: Path) -> None:
+    # the arguments the documentation's gallery passes (docs/conf.py, _example_argv)
+    _run("micro_curves_verification.py", ["--out", str(tmp_path), "--small"], monkeypatch)
     out = capsys.readouterr().out
     assert "Westergaard" in out and "Refinement" in out
+    assert (tmp_path / "references.csv").is_file() and (tmp_path / "refinement.csv").is_file()
