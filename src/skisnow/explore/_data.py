@@ -152,9 +152,9 @@ def explorer_dataset(
             tag = spec.ski_model + (f"_{Path(spec.base).stem}" if spec.base else "")
             path = root / f"explore_{tag}.zarr"
             run_sweep(spec, path, workers=workers, scheduler=scheduler, on_progress=on_chunk)
-            parts[spec.ski_model][Path(spec.base).name if spec.base else ""] = (
-                open_sweep(path).load()
-            )
+            parts[spec.ski_model][Path(spec.base).name if spec.base else ""] = open_sweep(
+                path
+            ).load()
     if not bases:
         parts = {model: by_base[""] for model, by_base in parts.items()}
     return explorer_from_sweeps(parts, specs[0], snow=snow)
