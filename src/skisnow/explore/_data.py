@@ -11,7 +11,6 @@ surface −u(x), as block means of the solver's cells (:func:`skisnow.sweep.stat
 
 from __future__ import annotations
 
-import tempfile
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -19,6 +18,7 @@ from typing import Any
 
 import numpy as np
 
+from skisnow._atomic import scratch_directory
 from skisnow._errors import InputError
 
 #: Zones of :class:`skisnow.contact.ZoneMetrics` on the page: the paper's zones and the total,
@@ -145,7 +145,7 @@ def explorer_dataset(
         if progress is not None:
             progress(done, total)
 
-    with tempfile.TemporaryDirectory(prefix="skisnow-explore-") as tmp:
+    with scratch_directory("explore") as tmp:
         root = Path(tmp if store is None else store)
         parts: dict[str, Any] = {model: {} for model in models}
         for spec in specs:

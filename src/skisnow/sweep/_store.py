@@ -215,7 +215,8 @@ def _encoding(spec: SweepSpec) -> dict[str, dict[str, Any]]:
     return enc
 
 
-#: Prefix of the temporary sibling a store is created in (``.NAME.creating-PID-RAND``).
+#: Tag of the temporary sibling a store is created in (``.STEM.creating-PID-RAND.zarr``, made by
+#: :func:`skisnow._atomic.temporary_sibling`).
 CREATING_TAG = "creating"
 
 
@@ -276,15 +277,15 @@ def create_store(path: Path, spec: SweepSpec, *, attrs: Mapping[str, Any]) -> No
     """Create the store atomically: metadata and coordinates (``to_zarr(compute=False)``) are
     written into a temporary sibling directory, which is renamed onto ``path`` only when the
     skeleton is complete. So ``path`` exists only as a complete, resumable store; a process
-    killed during creation leaves a ``.NAME.creating-*`` sibling that the next run (holding the
-    lock) removes. Call it with the store's :class:`StoreLock` held."""
+    killed during creation leaves a ``.STEM.creating-*`` sibling
+    (:func:`skisnow._atomic.temporary_sibling`) that the next run (holding the lock) removes.
+    Call it with the store's :class:`StoreLock` held."""
     import os
-    import shutil
 
-    from skisnow._atomic import fsync_dir, temporary_sibling
+    from skisnow._atomic import fsync_dir, remove_stale_siblings, temporary_sibling
 
-    for stale in path.parent.glob(f".{path.name}.{CREATING_TAG}-*"):
-        shutil.rmtree(stale, ignore_errors=True)  # left by a killed creation (we hold the lock)
+    # left by a killed creation: stale whoever made it, as we hold the store's lock
+    remove_stale_siblings(path, tags=(CREATING_TAG,), any_process=True)
     tmp = temporary_sibling(path, tag=CREATING_TAG)
     ds = template(spec, attrs=attrs)
     ds.to_zarr(
