@@ -25,11 +25,11 @@ import contextvars
 import math
 import os
 from collections.abc import Callable, Iterator
-from dataclasses import dataclass
 
 import numpy as np
 
 from skisnow._errors import ImplausibleValueError, InputError
+from skisnow._quantities import QUANTITIES, Quantity
 
 __all__ = [
     "QUANTITIES",
@@ -71,182 +71,6 @@ def allow_implausible(allow: bool = True) -> Iterator[None]:
         _ALLOW.reset(token)
 
 
-@dataclass(frozen=True, kw_only=True)
-class Quantity:
-    """One physical quantity at the edge of skisnow, in its field unit.
-
-    Attributes
-    ----------
-    name
-        What it is ("camber height").
-    unit
-        The field unit the value is given in ("mm").
-    low, high
-        Physically impossible beyond these bounds; ``low_open``/``high_open`` make the bound
-        itself impossible too (a mass of 0 kg).
-    plausible
-        The range plausible for a ski; outside it the value is refused unless overridden.
-    alternatives
-        Units a user may have typed by mistake, as ``(unit, factor, offset)`` with
-        ``value_in_field_unit = value_in_alternative · factor + offset``: used to say which unit
-        was probably meant.
-    min_span
-        For a column of values: the smallest plausible spread (max − min); a smaller one means
-        a unit slip (heights in metres in a millimetre column). ``0`` disables the check.
-    """
-
-    name: str
-    unit: str
-    low: float = -math.inf
-    high: float = math.inf
-    low_open: bool = False
-    high_open: bool = False
-    plausible: tuple[float, float] = (-math.inf, math.inf)
-    alternatives: tuple[tuple[str, float, float], ...] = ()
-    min_span: float = 0.0
-
-    def possible(self, v: np.ndarray) -> np.ndarray:
-        ok = np.isfinite(v)
-        ok &= (v > self.low) if self.low_open else (v >= self.low)
-        ok &= (v < self.high) if self.high_open else (v <= self.high)
-        return ok
-
-    def describe_possible(self) -> str:
-        lo = "" if self.low == -math.inf else f"{'>' if self.low_open else '>='} {self.low:g}"
-        hi = "" if self.high == math.inf else f"{'<' if self.high_open else '<='} {self.high:g}"
-        bounds = " and ".join(b for b in (lo, hi) if b)
-        return f"a finite number {bounds} {self.unit}".replace("  ", " ").strip()
-
-    def describe_plausible(self) -> str:
-        lo, hi = self.plausible
-        return f"{lo:g} to {hi:g} {self.unit}"
-
-    def guess_unit(self, value: float, *, span: bool = False) -> str | None:
-        """The alternative unit in which ``value`` would be plausible, if exactly one is."""
-        lo, hi = self.plausible
-        hits = []
-        for unit, factor, offset in self.alternatives:
-            if not span and value < lo <= 0.0 and offset == 0.0:
-                continue  # a negative value of a (nearly) positive quantity: the sign is wrong
-
-            if span:
-                v = abs(value) * factor
-                if v >= self.min_span and v <= hi - lo:
-                    hits.append(unit)
-            else:
-                v = value * factor + offset
-                if lo <= v <= hi:
-                    hits.append(unit)
-        return hits[0] if len(hits) >= 1 else None
-
-
-_M = ("m", 1e3, 0.0)
-_CM = ("cm", 10.0, 0.0)
-_UM_IN_MM = ("µm", 1e-3, 0.0)
-
-#: Every quantity skisnow reads at its edge, keyed by the name used in code.
-QUANTITIES: dict[str, Quantity] = {
-    "mass": Quantity(
-        name="mass", unit="kg", low=0.0, low_open=True, plausible=(0.1, 300.0),
-        alternatives=(("g", 1e-3, 0.0), ("lb", 0.45359237, 0.0)),
-    ),
-    "load_position": Quantity(
-        name="load position x_m from the balance point", unit="mm", plausible=(-700.0, 700.0),
-        alternatives=(_M, _CM),
-    ),
-    "x": Quantity(
-        name="position along the ski", unit="mm", plausible=(-1600.0, 1600.0),
-        alternatives=(_M, _CM), min_span=100.0,
-    ),
-    "ski_length": Quantity(
-        name="ski length", unit="mm", low=0.0, low_open=True, plausible=(800.0, 2600.0),
-        alternatives=(_M, _CM),
-    ),
-    "camber_height": Quantity(
-        name="camber height above the bench", unit="mm", plausible=(-0.5, 250.0),
-        alternatives=(_M, _UM_IN_MM), min_span=0.2,
-    ),
-    "width": Quantity(
-        name="ski width", unit="mm", low=0.0, low_open=True, plausible=(20.0, 150.0),
-        alternatives=(_M, _CM),
-    ),
-    "snow_modulus": Quantity(
-        name="snow (counter-surface) modulus", unit="MPa", low=0.0, low_open=True,
-        plausible=(0.01, 2.5e5), alternatives=(("Pa", 1e-6, 0.0), ("kPa", 1e-3, 0.0)),
-    ),
-    "base_modulus": Quantity(
-        name="ski base modulus", unit="MPa", low=0.0, low_open=True, plausible=(10.0, 2.0e4),
-        alternatives=(("Pa", 1e-6, 0.0), ("GPa", 1e3, 0.0), ("kPa", 1e-3, 0.0)),
-    ),
-    "temperature": Quantity(
-        name="snow temperature", unit="°C", low=-273.15, low_open=False, plausible=(-60.0, 0.0),
-        alternatives=(("K", 1.0, -273.15),),
-    ),
-    "pixel": Quantity(
-        name="pixel size", unit="µm", low=0.0, low_open=True, plausible=(0.005, 2000.0),
-        alternatives=(("m", 1e6, 0.0), ("mm", 1e3, 0.0), ("nm", 1e-3, 0.0)),
-    ),
-    "map_size": Quantity(
-        name="side of a topography map", unit="µm", low=0.0, low_open=True,
-        plausible=(5.0, 2.0e5), alternatives=(("mm", 1e3, 0.0), ("m", 1e6, 0.0)),
-    ),
-    "topography_height": Quantity(
-        name="peak-to-valley height of a ski-base topography", unit="m", low=0.0,
-        plausible=(0.0, 5e-3), alternatives=(("µm", 1e-6, 0.0), ("nm", 1e-9, 0.0),
-                                             ("mm", 1e-3, 0.0)),
-    ),
-    "grain": Quantity(
-        name="snow grain diameter", unit="µm", low=0.0, low_open=True, plausible=(5.0, 1.0e4),
-        alternatives=(("mm", 1e3, 0.0), ("m", 1e6, 0.0)),
-    ),
-    "pressure": Quantity(
-        name="macroscopic pressure", unit="kPa", low=0.0, low_open=True,
-        plausible=(0.01, 2.0e4), alternatives=(("Pa", 1e-3, 0.0), ("MPa", 1e3, 0.0)),
-    ),
-    "cutoff": Quantity(
-        name="low-pass cut-off wavelength (0 = none)", unit="µm", low=0.0,
-        plausible=(0.0, 1.0e5), alternatives=(("m", 1e6, 0.0), ("mm", 1e3, 0.0)),
-    ),
-    "step_along_ski": Quantity(
-        name="sampling step along the ski", unit="mm", low=0.0, low_open=True,
-        plausible=(0.005, 200.0), alternatives=(_M, _UM_IN_MM),
-    ),
-    "noise": Quantity(
-        name="height noise (standard deviation)", unit="mm", low=0.0, plausible=(0.0, 5.0),
-        alternatives=(_UM_IN_MM,),
-    ),
-    "alpha": Quantity(
-        name="significance level", unit="(probability)", low=0.0, high=1.0, low_open=True,
-        high_open=True, plausible=(1e-9, 0.2),
-    ),
-    "glide_time": Quantity(
-        name="glide time", unit="s", low=0.0, low_open=True, plausible=(0.01, 36000.0),
-    ),
-    "grid_points": Quantity(
-        name="grid points", unit="(count)", low=16.0, plausible=(16.0, 2.0**21),
-    ),
-    "sliding_speed": Quantity(
-        name="sliding speed", unit="m/s", low=0.0, low_open=True, plausible=(0.05, 40.0),
-        alternatives=(("km/h", 1 / 3.6, 0.0),),
-    ),
-    "film_cutoff": Quantity(
-        name="film-thickness cut-off", unit="nm", low=0.0, low_open=True,
-        plausible=(0.1, 1.0e5), alternatives=(("µm", 1e3, 0.0), ("m", 1e9, 0.0)),
-    ),
-    "shear_strength": Quantity(
-        name="shear strength of the real contact", unit="MPa", low=0.0, low_open=True,
-        plausible=(1e-4, 100.0), alternatives=(("Pa", 1e-6, 0.0), ("kPa", 1e-3, 0.0)),
-    ),
-    "viscosity": Quantity(
-        name="meltwater viscosity", unit="mPa·s", low=0.0, low_open=True,
-        plausible=(0.1, 100.0), alternatives=(("Pa·s", 1e3, 0.0),),
-    ),
-    "cells_across": Quantity(
-        name="cells across the width", unit="(count)", low=1.0, plausible=(1.0, 1024.0),
-    ),
-}  # fmt: skip
-
-
 def _fmt(v: float) -> str:
     return f"{v:.6g}"
 
@@ -286,7 +110,7 @@ def check_value(
         raise InputError(
             f"{where}: {value!r} is not a number; need {q.describe_possible()}"
         ) from None
-    if not q.possible(np.array([v]))[0]:
+    if not q.possible(np.array([v]))[0] or (q.integer and not float(v).is_integer()):
         raise InputError(
             f"{where}: {_fmt(v)} {q.unit} is not a possible {q.name}; need {q.describe_possible()}"
         )
