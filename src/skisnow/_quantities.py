@@ -215,7 +215,11 @@ QUANTITIES: dict[str, Quantity] = {
         typical=16.0,
         integer=True,
     ),
-    # -- the ski file (skisnow.ski): stiffness and uncertainties
+    # -- the ski file (skisnow.ski): zones, stiffness and uncertainties
+    "zone_length": Quantity(
+        name="length of a zone of the ski (kick zone, boot plate)", unit="mm", low=0.0,
+        low_open=True, plausible=(20.0, 2600.0), alternatives=(_M, _CM), typical=500.0,
+    ),
     "bending_stiffness": Quantity(
         name="bending stiffness EI", unit="N m²", low=0.0, low_open=True, plausible=(1.0, 2.0e5),
         alternatives=(("N mm²", 1e-6, 0.0), ("N cm²", 1e-4, 0.0), ("kN m²", 1e3, 0.0)),

@@ -31,6 +31,7 @@ import numpy as np
 import pandas as pd
 
 from skisnow._errors import FileFormatError, InputError
+from skisnow._json import load_json
 from skisnow.bench._table import BENCH_COLUMNS, MIN_PROFILE_POINTS, validate_bench_table
 
 _META_TAG = "# skisnow-bench-metadata:"
@@ -287,12 +288,8 @@ def read_bench(path: str | Path) -> BenchData:
             if not line.startswith("#"):
                 break
             if line.startswith(_META_TAG):
-                try:
-                    metadata = json.loads(line[len(_META_TAG) :])
-                except json.JSONDecodeError as exc:
-                    raise FileFormatError(
-                        f"{path}: line {n_comment + 1}: metadata is not valid JSON ({exc})"
-                    ) from None
+                metadata = load_json(line[len(_META_TAG) :],
+                                     where=f"{path}: line {n_comment + 1}: metadata")  # fmt: skip
                 if not isinstance(metadata, dict):
                     raise FileFormatError(
                         f"{path}: line {n_comment + 1}: metadata must be an object"
@@ -323,11 +320,10 @@ def read_bench(path: str | Path) -> BenchData:
         raw = (tbl.schema.metadata or {}).get(_PARQUET_KEY)
         if raw is not None:
             try:
-                metadata = json.loads(raw.decode("utf-8"))
-            except (UnicodeDecodeError, json.JSONDecodeError) as exc:
-                raise FileFormatError(
-                    f"{path}: schema metadata is not valid JSON ({exc})"
-                ) from None
+                text = raw.decode("utf-8")
+            except UnicodeDecodeError as exc:
+                raise FileFormatError(f"{path}: schema metadata is not UTF-8 ({exc})") from None
+            metadata = load_json(text, where=f"{path}: schema metadata")
         clean = validate_bench_table(tbl.to_pandas(), where=str(path), row_offset=1)
     try:
         json.dumps(metadata, allow_nan=False)

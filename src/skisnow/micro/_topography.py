@@ -30,7 +30,10 @@ from pathlib import Path
 
 import numpy as np
 
+from skisnow._checks import check_value
 from skisnow._errors import FileFormatError, InputError
+from skisnow._json import read_json_file
+from skisnow._resources import check_npy_header, load_npz
 
 #: what corrupt or truncated files raise deep inside SurfaceTopography's vendor readers (binary
 #: layouts read with struct/numpy, XML and zip containers, text headers)
@@ -194,6 +197,8 @@ def read_topography(
         if sidecar is not None:
             pixel_size, height_unit = (sidecar[0], sidecar[1]), "m"
         try:
+            if suffix == ".npy":
+                check_npy_header(path)  # the header's shape against memory, before reading
             arr = np.load(path, allow_pickle=False) if suffix == ".npy" else _load_text(path)
         except FileFormatError:
             raise
@@ -235,21 +240,21 @@ def _sidecar(path: Path) -> Path:
 
 
 def _read_sidecar(path: Path) -> tuple[float, float] | None:
-    import json
-
     side = _sidecar(path)
     if not side.is_file():
         return None
+    doc = read_json_file(side, what="topography side-car", max_bytes=1 << 20)
     try:
-        doc = json.loads(side.read_text(encoding="utf-8"))
         dx, dy = float(doc["dx_m"]), float(doc["dy_m"])
         if doc.get("height_unit", "m") != "m":
             raise ValueError("height_unit must be 'm'")
-    except (OSError, ValueError, KeyError, TypeError) as exc:
+    except (ValueError, KeyError, TypeError) as exc:
         raise FileFormatError(
             f"{side}: not a skisnow topography sidecar (need a JSON object with dx_m, dy_m in "
             f"metres; {exc})"
         ) from None
+    for key, v in (("dx_m", dx), ("dy_m", dy)):  # checked in µm, the unit of --pixel-um
+        check_value(v * 1e6, "pixel", where=f"{side}: {key} = {v:g} m")
     return dx, dy
 
 
@@ -269,9 +274,11 @@ def _text_header_pixel(path: Path) -> tuple[float, float] | None:
 def _read_npz(path: Path) -> Topography:
     name = str(path)
     try:
-        with np.load(path, allow_pickle=False) as f:
-            heights = np.asarray(f["heights"], dtype=np.float64)
-            dx, dy = float(f["dx_m"]), float(f["dy_m"])
+        f = load_npz(path, where=name, keys=("heights", "dx_m", "dy_m"))  # headers checked first
+        heights = np.asarray(f["heights"], dtype=np.float64)
+        dx, dy = float(f["dx_m"]), float(f["dy_m"])
+        for key, v in (("dx_m", dx), ("dy_m", dy)):
+            check_value(v * 1e6, "pixel", where=f"{name}: {key} = {v:g} m")
     except KeyError as exc:
         raise FileFormatError(
             f"{name}: a skisnow .npz topography holds 'heights' [m], 'dx_m' and 'dy_m' "
@@ -286,7 +293,6 @@ def _read_npz(path: Path) -> Topography:
 def _check_heights(heights: np.ndarray, name: str, unit: str) -> None:
     """A ski base's topography spans micrometres: a peak-to-valley beyond the plausible range
     means the heights were not in ``unit`` (e.g. integer counts or nanometres read as metres)."""
-    from skisnow._checks import check_value
 
     finite = heights[np.isfinite(heights)]
     if finite.size:

@@ -19,7 +19,6 @@ import functools
 import hashlib
 import io
 import json
-import zipfile
 from collections.abc import Mapping
 from dataclasses import asdict
 from importlib import resources
@@ -28,7 +27,10 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from skisnow._checks import check_value
 from skisnow._errors import FileFormatError, InputError, SolverStatus
+from skisnow._json import load_json
+from skisnow._resources import load_npz
 
 if TYPE_CHECKING:
     from skisnow.network._network import BlockNetwork, CamberNetwork
@@ -106,10 +108,7 @@ def parse_model_bytes(
     npz: bytes, text: str, where: str
 ) -> tuple[dict[str, np.ndarray], dict[str, Any]]:
     """Check and parse the two files' contents; ``where`` names them in error messages."""
-    try:
-        doc = json.loads(text)
-    except json.JSONDecodeError as exc:
-        raise FileFormatError(f"{where}.json: not valid JSON ({exc})") from None
+    doc = load_json(text, where=f"{where}.json")
     if not isinstance(doc, dict):
         raise FileFormatError(f"{where}.json: expected a JSON object, got {type(doc).__name__}")
     declared = doc.get("metadata_sha256")
@@ -131,11 +130,8 @@ def parse_model_bytes(
             f"{where}.npz: weights file is corrupt or truncated, or does not belong to "
             f"{where}.json (sha256 {actual[:12]}…, metadata says {str(expected)[:12]}…)"
         )
-    try:
-        with np.load(io.BytesIO(npz), allow_pickle=False) as f:
-            arrays = {k: f[k] for k in f.files}
-    except (ValueError, OSError, zipfile.BadZipFile, EOFError) as exc:
-        raise FileFormatError(f"{where}.npz: cannot read the weights ({exc})") from None
+    # headers and sizes first (a re-signed archive bomb), never pickle
+    arrays = load_npz(npz, where=f"{where}.npz")
     return arrays, doc
 
 
@@ -309,6 +305,9 @@ def network_from_files(
         raise FileFormatError(f"{where}: invalid metadata ({exc})") from None
     if n_members < 1:
         raise FileFormatError(f"{where}: n_members must be >= 1, got {n_members}")
+    check_value(n_members, "ensemble_members", where=f"{where}.json: n_members")
+    for i, w in enumerate(architecture.widths):
+        check_value(w, "layer_width", where=f"{where}.json: architecture, layer {i + 1}")
     _check_numbers(scaling, domain, where)
     status = doc.get("metadata", {}).get("status")
     if status is not None and status not in {s.value for s in SolverStatus}:

@@ -38,6 +38,7 @@ import jax
 import jax.numpy as jnp
 import numpy as np
 
+from skisnow._checks import check_value
 from skisnow._errors import DomainWarning, InputError, SolverStatus
 from skisnow.network._scaling import Domain, ReferenceProfile, Scaling
 
@@ -339,6 +340,13 @@ class CamberNetwork:
         h = s.unscale_height(out)
         if self.reference is not None:
             h = h + self.reference(x)
+        if on_domain_error != "ignore":  # a derived quantity, checked where it is computed
+            check_value(
+                float(np.max(h)) * 1e3,
+                "camber_height",
+                where=f"camber network for ski {self.ski!r}: its highest predicted camber "
+                "(a re-scaled or damaged model file?)",
+            )
         return h, scalar
 
     def predict(

@@ -45,12 +45,16 @@ import json
 import math
 import os
 from collections.abc import Mapping
-from decimal import Decimal, InvalidOperation
+from decimal import Decimal
 from pathlib import Path
 from typing import Any
 
+import numpy as np
+
 from skisnow._atomic import atomic_write
+from skisnow._checks import check_array, check_value
 from skisnow._errors import FileFormatError, InputError
+from skisnow._json import load_json, read_json_file
 from skisnow.ski._skis import Provenance, Ski
 
 __all__ = [
@@ -208,6 +212,19 @@ class _Reader:
     def fail(self, field: str, message: str) -> FileFormatError:
         return FileFormatError(f"ski file {self.where}: {field}: {message}")
 
+    def plausible(
+        self, values: Any, quantity: str, field: str, *, scale: float = 1e3, span: bool = False
+    ) -> None:
+        """The plausibility ranges of :mod:`skisnow._checks` on a field (read in SI, checked in
+        the file's unit: ``scale`` 1e3 for millimetres; ``span``: also the column's spread)."""
+        where = f"ski file {self.where}: {field}"
+        if np.ndim(values) == 0:
+            check_value(float(values) * scale, quantity, where=where)
+            return
+        check_array(np.asarray(values, dtype=float) * scale, quantity, where=where,
+                    check_span=span, row_label=lambda i: f"[{i}]",
+                    impossible=FileFormatError)  # fmt: skip
+
     def number(self, value: Any, field: str, *, mm: bool) -> float:
         if isinstance(value, bool) or not isinstance(value, Decimal | int):
             raise self.fail(field, f"must be a number, got {value!r}")
@@ -312,24 +329,33 @@ def ski_from_document(doc: Any, *, where: str = "<document>") -> Ski:
     width = r.number(doc["width_mm"], "width_mm", mm=True)
     if not width > 0:
         raise r.fail("width_mm", f"must be > 0 mm, got {width * 1e3:g}")
+    r.plausible([x_tail, x_tip], "x", "x_tail_mm, x_tip_mm")
+    check_value((x_tip - x_tail) * 1e3, "ski_length", where=f"ski file {where}: x_tip_mm - "
+                "x_tail_mm (the length of the running surface)")  # fmt: skip
+    r.plausible(width, "width", "width_mm")
 
     st = r.mapping(doc["stiffness"], "stiffness", ("x_mm", "ei_nm2", "log_ei_sd"))
     ex, ei = r.stations(st, "stiffness", "ei_nm2", mm=False)
     for i, v in enumerate(ei):
         if not v > 0:
             raise r.fail(f"stiffness.ei_nm2[{i}]", f"EI must be > 0 N m², got {v:g}")
+    r.plausible(ei, "bending_stiffness", "stiffness.ei_nm2", scale=1.0)
     log_sd = None
     if st.get("log_ei_sd") is not None:
         log_sd = r.numbers(st["log_ei_sd"], "stiffness.log_ei_sd", mm=False)
         if len(log_sd) != len(ex) or min(log_sd) < 0:
             raise r.fail("stiffness.log_ei_sd", f"needs {len(ex)} values >= 0 (one per station)")
+        r.plausible(log_sd, "log_ei_sd", "stiffness.log_ei_sd", scale=1.0)
     cb = r.mapping(doc["camber"], "camber", ("x_mm", "z0_mm", "z0_sd_mm"))
     cx, z0 = r.stations(cb, "camber", "z0_mm", mm=True)
+    r.plausible(z0, "camber_height", "camber.z0_mm", span=True)  # span: heights in m?
     z_sd = None
     if cb.get("z0_sd_mm") is not None:
         z_sd = r.numbers(cb["z0_sd_mm"], "camber.z0_sd_mm", mm=True)
         if len(z_sd) != len(cx) or min(z_sd) < 0:
             raise r.fail("camber.z0_sd_mm", f"needs {len(cx)} values >= 0 (one per station)")
+        r.plausible(z_sd, "camber_sd", "camber.z0_sd_mm")
+    r.plausible([ex[0], ex[-1], cx[0], cx[-1]], "x", "stiffness.x_mm, camber.x_mm (ends)")
     for field, xs in (("stiffness.x_mm", ex), ("camber.x_mm", cx)):
         if xs[0] > x_tail or xs[-1] < x_tip:
             raise r.fail(
@@ -345,6 +371,7 @@ def ski_from_document(doc: Any, *, where: str = "<document>") -> Ski:
         for i, v in enumerate(width_values):
             if not v > 0:
                 raise r.fail(f"width_profile.width_mm[{i}]", f"must be > 0 mm, got {v * 1e3:g}")
+        r.plausible(width_values, "width", "width_profile.width_mm")
     kick = r.pair(doc.get("kick_zone_mm"), "kick_zone_mm")
     boot = r.pair(doc.get("boot_plate_mm"), "boot_plate_mm")
     for field, span in (("kick_zone_mm", kick), ("boot_plate_mm", boot)):
@@ -354,6 +381,8 @@ def ski_from_document(doc: Any, *, where: str = "<document>") -> Ski:
                 f"must lie on the ski, within [{x_tail * 1e3:g}, {x_tip * 1e3:g}] mm, got "
                 f"[{span[0] * 1e3:g}, {span[1] * 1e3:g}]",
             )
+        if span is not None:
+            r.plausible(span[1] - span[0], "zone_length", f"{field} (end - start)")
     description = r.text(doc.get("description", ""), "description")
 
     pv = r.mapping(doc.get("provenance", {}), "provenance", _PROVENANCE_KEYS)
@@ -409,14 +438,8 @@ def ski_from_document(doc: Any, *, where: str = "<document>") -> Ski:
 
 def ski_from_json(text: str, *, where: str = "<text>") -> Ski:
     """The :class:`Ski` of a ski file's text (validated as :func:`read_ski` does)."""
-    try:
-        doc = json.loads(text, parse_float=Decimal, parse_constant=_reject_constant)
-    except json.JSONDecodeError as exc:
-        raise FileFormatError(
-            f"ski file {where}: not valid JSON at line {exc.lineno}, column {exc.colno}: {exc.msg}"
-        ) from None
-    except (ValueError, InvalidOperation) as exc:
-        raise FileFormatError(f"ski file {where}: {exc}") from None
+    doc = load_json(text, where=f"ski file {where}", parse_float=Decimal,
+                    parse_constant=_reject_constant)  # fmt: skip
     return ski_from_document(doc, where=where)
 
 
@@ -428,13 +451,9 @@ def read_ski(path: str | os.PathLike[str]) -> Ski:
             the field and what would be valid).
     """
     path = Path(path)
-    try:
-        text = path.read_text(encoding="utf-8")
-    except OSError as exc:
-        raise FileFormatError(f"ski file {path}: cannot be read ({exc.strerror})") from None
-    except UnicodeDecodeError:
-        raise FileFormatError(f"ski file {path}: not UTF-8 text (a ski file is JSON)") from None
-    return ski_from_json(text, where=str(path))
+    doc = read_json_file(path, what="ski file", parse_float=Decimal,
+                         parse_constant=_reject_constant)  # fmt: skip
+    return ski_from_document(doc, where=str(path))
 
 
 def _reject_constant(name: str) -> Any:

@@ -15,7 +15,9 @@ from dataclasses import asdict, dataclass, field
 from functools import lru_cache
 from typing import Any
 
-from skisnow._errors import InputError
+import numpy as np
+
+from skisnow._errors import FileFormatError, InputError
 from skisnow._values import parse_values, sorted_unique  # noqa: F401  (parse_values re-exported)
 from skisnow.materials import BASE
 
@@ -244,14 +246,30 @@ class SweepSpec:
         return json.dumps(asdict(self), sort_keys=True)
 
     @classmethod
-    def from_json(cls, text: str) -> SweepSpec:
-        """Inverse of :meth:`to_json`."""
-        d = json.loads(text)
-        for key in ("skis", "masses", "load_positions", "snow_moduli", "zones"):
-            d[key] = tuple(d[key])
-        d["ski_files"] = tuple(tuple(pair) for pair in d.get("ski_files", ()))
-        d["friction"] = tuple(tuple(pair) for pair in d.get("friction", ()))
-        return cls(**d)
+    def from_json(cls, text: str, *, where: str = "sweep spec") -> SweepSpec:
+        """Inverse of :meth:`to_json`; a spec read from a store (``where``) is a door like any
+        file: depth-limited JSON, every field validated, the grid checked for plausibility."""
+        from skisnow._checks import check_option_values
+        from skisnow._json import load_json
+
+        d = load_json(text, where=where)
+        try:
+            for key in ("skis", "masses", "load_positions", "snow_moduli", "zones"):
+                d[key] = tuple(d[key])
+            d["ski_files"] = tuple(tuple(pair) for pair in d.get("ski_files", ()))
+            d["friction"] = tuple(tuple(pair) for pair in d.get("friction", ()))
+            spec = cls(**d)
+        except (TypeError, KeyError, AttributeError) as exc:
+            raise FileFormatError(f"{where}: not a sweep spec ({exc})") from None
+        except InputError as exc:
+            raise FileFormatError(f"{where}: {exc}") from None
+        for name, values, quantity, to_field in (
+            ("masses", spec.masses, "mass", 1.0),
+            ("load_positions", spec.load_positions, "load_position", 1e3),
+            ("snow_moduli", spec.snow_moduli, "snow_modulus", 1e-6),
+        ):
+            check_option_values(np.asarray(values) * to_field, quantity, f"{where}: {name}")
+        return spec
 
 
 @lru_cache(maxsize=8)

@@ -331,6 +331,11 @@ def read_spec(path: Path) -> SweepSpec:
     """The :class:`SweepSpec` stored in a sweep's Zarr store."""
     import zarr
 
+    from skisnow._json import read_json_file
+
+    for meta in sorted(Path(path).glob("**/.z*")) + sorted(Path(path).glob("**/zarr.json")):
+        if meta.is_file():  # zarr parses them with json.loads: a nested bomb is refused here
+            read_json_file(meta, what="sweep store metadata", max_bytes=64 << 20)
     try:
         group = zarr.open_group(str(path), mode="r")
         text = group.attrs[SPEC_ATTR]
@@ -338,7 +343,7 @@ def read_spec(path: Path) -> SweepSpec:
         raise FileFormatError(
             f"{path}: not a skisnow sweep store (no readable '{SPEC_ATTR}' attribute: {exc})"
         ) from None
-    return SweepSpec.from_json(str(text))
+    return SweepSpec.from_json(str(text), where=f"{path}: {SPEC_ATTR}")
 
 
 def check_same_sweep(path: Path, spec: SweepSpec, stored_attrs: Mapping[str, Any]) -> None:

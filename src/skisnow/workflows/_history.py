@@ -15,12 +15,13 @@ the file as a text editor counts them.
 from __future__ import annotations
 
 import io as _io
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
 import numpy as np
 
-from skisnow._checks import check_finite_column
+from skisnow._checks import check_array, check_finite_column, check_value
 from skisnow._errors import FileFormatError, InputError
 from skisnow.constants import STANDARD_GRAVITY
 
@@ -28,6 +29,8 @@ __all__ = ["MAX_GAP_FACTOR", "LoadHistory", "check_positions", "read_load_histor
 
 #: A time step longer than this many times the median step is a gap (a lost stretch of samples).
 MAX_GAP_FACTOR: float = 3.0
+#: The largest load-history file read (bytes).
+MAX_HISTORY_BYTES: int = 256 << 20
 
 
 @dataclass(frozen=True, kw_only=True, eq=False)
@@ -142,6 +145,26 @@ def _validate(
             f"{where}: {label(i)}, column {columns[1]!r}: negative load {force[i]:g}; the snow "
             "can only push on the ski (use 0 while the ski is unloaded)"
         )
+    # the plausibility ranges of skisnow._checks, in the file's units (column names say which)
+    mass_column, load = columns[1] == "mass_kg", force  # the load column as given
+    check_array(load, "load_mass" if mass_column else "force", where=f"{where}, column "
+                f"{columns[1]!r}", row_label=label, check_span=False)  # fmt: skip
+    to_mm = 1.0 if columns[2] == "load_position_mm" else 1e3  # a LoadHistory holds metres
+    check_array(position * to_mm, "load_position", where=f"{where}, column {columns[2]!r}",
+                row_label=label, check_span=False)  # fmt: skip
+    check_value(median, "sample_step", where=f"{where}, column {columns[0]!r}: the median time "
+                "step between samples")  # fmt: skip
+    check_value(float(t[-1] - t[0]), "history_duration", where=f"{where}, column "
+                f"{columns[0]!r}: the duration (last - first time)")  # fmt: skip
+    # a derived quantity no column shows: the impulse over the duration, as a mass on the ski
+    impulse = float(np.sum(0.5 * (load[1:] + load[:-1]) * steps))
+    mean = impulse / float(t[-1] - t[0]) / (1.0 if mass_column else STANDARD_GRAVITY)
+    check_value(
+        mean,
+        "mean_load",
+        where=f"{where}: the mean load (impulse / duration = "
+        f"{impulse:.4g} {'kg s' if mass_column else 'N s'} over {t[-1] - t[0]:.4g} s)",
+    )
 
 
 def read_load_history(path: str | Path, *, max_gap_factor: float = MAX_GAP_FACTOR) -> LoadHistory:
@@ -172,6 +195,12 @@ def read_load_history(path: str | Path, *, max_gap_factor: float = MAX_GAP_FACTO
     path = Path(path)
     if not path.is_file():
         raise FileFormatError(f"{path}: no such file")
+    if path.stat().st_size > MAX_HISTORY_BYTES:
+        raise FileFormatError(
+            f"{path}: {path.stat().st_size / 2**20:.0f} MiB, more than the "
+            f"{MAX_HISTORY_BYTES / 2**20:.0f} MiB a load history can be (a day of 1 kHz samples "
+            "is less); cut it into cycles"
+        )
     try:
         text = path.read_text(encoding="utf-8")
     except (OSError, UnicodeDecodeError) as exc:
@@ -192,7 +221,10 @@ def read_load_history(path: str | Path, *, max_gap_factor: float = MAX_GAP_FACTO
             _io.StringIO("\n".join(line for _, line in kept)), skipinitialspace=True
         )
     except (pd.errors.ParserError, pd.errors.EmptyDataError) as exc:
-        raise FileFormatError(f"{path}: not a valid CSV table ({exc})") from None
+        # pandas counts the lines it was given (comments removed): say the file's line
+        why = re.sub(r"line (\d+)", lambda m: f"line {kept[min(int(m[1]), len(kept)) - 1][0]}",
+                     str(exc).strip())  # fmt: skip
+        raise FileFormatError(f"{path}: not a valid CSV table ({why})") from None
     lines = [n for n, _ in kept[1:]]
     cols = [str(c).strip() for c in table.columns]
     table.columns = cols
