@@ -176,9 +176,11 @@ def main(argv: list[str] | None = None) -> int:
             warnings.warn_explicit(w.message, w.category, w.filename, w.lineno, source=w.source)
     if code != EXIT_OK:
         return code
+    from skisnow._names import printable
+
     for m in _state["warnings"]:
         if m not in _state["shown"]:
-            typer.echo(f"skisnow: warning: {m}", err=True)
+            typer.echo(f"skisnow: warning: {printable(m)}", err=True)
     if _state["converged"] is False:
         typer.echo("skisnow: warning: the solver did not converge (exit code 3)", err=True)
         return EXIT_NOT_CONVERGED
@@ -211,6 +213,8 @@ def _run(args: list[str]) -> int:
         name = type(exc).__name__
         code = _exit_code_of(exc)
         what = "internal error" if code == EXIT_INTERNAL else "error"
-        typer.echo(f"skisnow: {what}: {exc} [{name}]", err=True)
+        from skisnow._names import printable
+
+        typer.echo(f"skisnow: {what}: {printable(exc)} [{name}]", err=True)
         return code
     return code if isinstance(code, int) else EXIT_OK

@@ -24,8 +24,8 @@ from skisnow.cli._render import (
     SkiModelOption,
     console,
     emit_json,
-    err_console,
     print_table,
+    say,
 )
 from skisnow.materials import BASE
 from skisnow.pipeline import DEFAULT_N_POINTS, MODELS, PROFILE_SOURCES, SKI_MODELS
@@ -253,7 +253,7 @@ def contact(
     )
     sol, zones = case.solution, case.zones
     for note in case.warnings:
-        err_console.print(f"[yellow]warning:[/] {note}")
+        say(f"warning: {note}", style="yellow")
     # exit code 3 when unconverged, 4 outside a model's domain (the last note of an unconverged
     # case is the solver's own, the others are domain warnings)
     report_converged(case.converged)

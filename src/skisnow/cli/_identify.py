@@ -7,7 +7,6 @@ from pathlib import Path
 from typing import Annotated
 
 import typer
-from rich.markup import escape
 
 from skisnow._errors import InputError
 from skisnow.cli._app import app, report_converged
@@ -17,7 +16,6 @@ from skisnow.cli._render import (
     NStiffnessOption,
     RegularisationOption,
     emit_json,
-    err_console,
     print_table,
 )
 
@@ -65,7 +63,7 @@ def identify(
 
     def say(msg: str) -> None:
         if not json_out:
-            err_console.print(f"[dim]{msg}[/dim]")
+            say(msg, style="dim")
 
     res = identify_ski(
         bench,
@@ -113,7 +111,7 @@ def identify(
         emit_json(doc)
         return
     for w in res.warnings:
-        err_console.print(f"[yellow]warning:[/yellow] {escape(w)}")
+        say(f"warning: {w}", style="yellow")
     rows = [[k, v] for k, v in doc.items() if k not in ("gcv", "warnings")]
     print_table("Identified ski (passport: skisnow skis --show FILE)", ["", "value"], rows)
     print_table(

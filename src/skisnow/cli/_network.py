@@ -10,7 +10,13 @@ import typer
 
 from skisnow._errors import InputError
 from skisnow.cli._app import app, report_domain_warnings
-from skisnow.cli._render import JsonOption, emit_json, err_console, print_table, progress_bar
+from skisnow.cli._render import (
+    JsonOption,
+    emit_json,
+    print_table,
+    progress_bar,
+    say,
+)
 
 
 def _resolve_model(model: str) -> Any:
@@ -152,7 +158,7 @@ def predict(
         )
     notes = [str(w.message) for w in caught if issubclass(w.category, DomainWarning)]
     for n in notes:
-        err_console.print(f"[yellow]warning:[/] {n}")
+        say(f"warning: {n}", style="yellow")
     report_domain_warnings(notes, shown=True)  # exit code 4, listed in --json
     from skisnow.ski import SHIPPED_SKIS, breitschaedel_contact, get_ski
 

@@ -14,6 +14,8 @@ import typer
 from rich.console import Console
 from rich.table import Table
 
+from skisnow._names import printable
+
 #: Options several commands share (one wording, one default): ``name: JsonOption = False``.
 JsonOption = Annotated[
     bool, typer.Option("--json", help="Print one JSON document to stdout, nothing else.")
@@ -94,6 +96,21 @@ def _jsonable(value: Any) -> Any:
     return value
 
 
+def say(text: str, *, style: str = "") -> None:
+    """One line on stderr (Rich), ``text`` shown literally: no markup, control characters
+    escaped (names and messages come from files)."""
+    from rich.text import Text
+
+    err_console.print(Text(printable(text), style=style), highlight=False)
+
+
+def show(text: str, *, style: str = "") -> None:
+    """One line on stdout, ``text`` shown literally (see :func:`say`)."""
+    from rich.text import Text
+
+    console.print(Text(printable(text), style=style), highlight=False)
+
+
 def emit_json(document: Mapping[str, Any] | Sequence[Any]) -> None:
     """Print exactly one JSON document to stdout and nothing else (NaN/inf become null).
 
@@ -134,7 +151,7 @@ def _cell(v: Any, floatfmt: str | None) -> str:
         return "—"
     if isinstance(v, (float, np.floating)):
         return format(float(v), floatfmt) if floatfmt else format_number(float(v))
-    return str(v)
+    return printable(v)  # a name from a file: its control characters shown, never acted on
 
 
 def _span(text: str, wraps: bool) -> int:
@@ -186,6 +203,7 @@ def print_table(
     cells = [[_cell(v, floatfmt) for v in row] for row in rows]
     wraps = [k == 0 or any(isinstance(row[k], str) for row in rows) for k in range(len(columns))]
     keep, dropped, tight = fit_columns(columns, cells, console.width, wraps=wraps)
+    title, columns = printable(title), [printable(c) for c in columns]
     table = Table(title=escape(title))
     natural = sum(max(max((len(r[k]) for r in cells), default=0), len(columns[k])) + 3
                   for k in keep) + 1  # fmt: skip

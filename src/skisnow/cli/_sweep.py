@@ -8,6 +8,7 @@ from typing import Annotated
 import typer
 
 from skisnow._errors import InputError
+from skisnow._names import file_stem
 from skisnow.cli._app import app
 from skisnow.cli._media import (
     BaseOption,
@@ -29,9 +30,9 @@ from skisnow.cli._render import (
     SkiModelOption,
     SnowModulusGridOption,
     emit_json,
-    err_console,
     print_table,
     progress_bar,
+    say,
 )
 from skisnow.cli._ski import resolve_profile_source
 
@@ -312,9 +313,10 @@ def report(
         snow_modulus_mpa = "20:400:40"
 
     source = resolve_profile_source(profile_source, [ski])
-    stem = Path(ski).stem if ski.lower().endswith(".json") else ski  # a ski file: its stem
+    # output names from the ski's name: a label made safe, never a path (stays inside --out)
+    stem = file_stem(Path(ski).stem if ski.lower().endswith(".json") else ski)
     if not json_out:
-        err_console.print(
+        say(
             f"report of {ski}: skier body mass {body_mass_kg:g} kg (--body-mass-kg), load at "
             f"{load_position_mm:g} mm from the balance point, {source} route"
         )
@@ -365,7 +367,7 @@ def report(
             ski_model=ski_model,  # type: ignore[arg-type]
         )
         for spec, message in fleet.failures:
-            err_console.print(f"[bold red]not compared[/]: {spec}: {message}")
+            say(f"not compared: {spec}: {message}", style="bold red")
     explorer_name = None
     if explorer:
         from skisnow.explore import write_explorer

@@ -33,9 +33,10 @@ from skisnow.cli._render import (
     _jsonable,
     console,
     emit_json,
-    err_console,
     print_table,
     progress_bar,
+    say,
+    show,
 )
 
 _SNOW = typer.Option(
@@ -87,7 +88,7 @@ def friction_assumptions(friction: object, snow: object) -> str:
 
 def _report_failures(failures: Sequence[tuple[str, str]]) -> None:
     for spec, message in failures:
-        err_console.print(f"[bold red]not compared[/]: {spec}: {message}")
+        say(f"not compared: {spec}: {message}", style="bold red")
 
 
 # ------------------------------------------------------------------------------- compare
@@ -354,9 +355,9 @@ def compare(
                 f"order changes between {c['between_mpa'][0]:g} and {c['between_mpa'][1]:g} MPa"
             )
         for note in notes:
-            console.print(f"note: {note}")
+            show(f"note: {note}")
         for f in files:
-            console.print(f"wrote {f}")
+            show(f"wrote {f}")
     if cmp.failures:
         raise typer.Exit(EXIT_INPUT)
 
@@ -465,8 +466,8 @@ def pairs(
         )
         console.print(definition)
         if result.spare:
-            console.print(f"spare (odd fleet): {result.spare}")
+            show(f"spare (odd fleet): {result.spare}")
         for f in files:
-            console.print(f"wrote {f}")
+            show(f"wrote {f}")
     if result.failures:
         raise typer.Exit(EXIT_INPUT)

@@ -30,7 +30,7 @@ from skisnow.cli._media import (
     resolve_base,
     resolve_snow,
 )
-from skisnow.cli._render import JsonOption, console, emit_json, print_table, progress_bar
+from skisnow.cli._render import JsonOption, emit_json, print_table, progress_bar, show
 from skisnow.cli._workflows import _MODEL, _OUT, _POINTS, _SNOW, write_csv
 
 
@@ -278,7 +278,7 @@ def cycle(
         )
         return
     for note in notes:
-        console.print(f"[bold yellow]note[/]: {note}")
+        show(f"note: {note}", style="bold yellow")
     print_table(
         f"Kick-zone contact over the cycle: {results[0][1].attrs['ski']} on "
         f"{snow_modulus_mpa:g} MPa snow",
@@ -321,9 +321,9 @@ def cycle(
                 for r in real
             ],
         )  # fmt: skip
-        console.print(f"assumptions: {results[0][1].attrs['friction']}")
+        show(f"assumptions: {results[0][1].attrs['friction']}")
     for name, ds in results:
         if ds.attrs["history_source"] and template is not None:
-            console.print(f"{name}: {ds.attrs['history_source']}")
+            show(f"{name}: {ds.attrs['history_source']}")
     for f in files:
-        console.print(f"wrote {f}")
+        show(f"wrote {f}")

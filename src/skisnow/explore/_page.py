@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import base64
 import html
-import json
+import re
 from collections.abc import Callable, Sequence
 from importlib import resources
 from pathlib import Path
@@ -14,6 +14,7 @@ from typing import Any
 
 import numpy as np
 
+from skisnow._names import script_json
 from skisnow.explore._pack import pack
 
 CURVES = ("pressure_kpa", "base_um", "snow_um")
@@ -102,14 +103,14 @@ def render_explorer(ds: Any, *, title: str = "skisnow explorer", subtitle: str =
         "__MASS0__": str(_nearest(grid["mass_kg"], 60.0)),
         "__POS0__": str(_nearest(grid["load_position_mm"], -120.0)),
         "__MOD0__": str(_nearest(grid["snow_modulus_mpa"], 100.0)),
-        # "</" never appears in JSON numbers/names we write, but escape it anyway for <script>
-        "__META__": json.dumps(meta, separators=(",", ":")).replace("</", "<\\/"),
+        # names come from files: no text may end the <script> block or open a comment in it
+        "__META__": script_json(meta),
         "__BLOB__": base64.b64encode(blob).decode("ascii"),
         "__SCRIPT__": script,
     }
-    for key, value in replacements.items():
-        page = page.replace(key, value)
-    return page
+    # one pass: a replacement's text (a ski named "__META__") is never replaced again
+    pattern = re.compile("|".join(re.escape(k) for k in replacements))
+    return pattern.sub(lambda m: replacements[m.group()], page)
 
 
 # The keyword options of explorer_dataset, repeated on purpose: it passes them on, and its

@@ -274,8 +274,10 @@ def write_report(
     """Write ``{out_dir}/{ski}_report.html`` of a :class:`skisnow.report.SkiStudy` (with the
     optional ``cycles`` and ``fleet`` sections of :func:`build_report`); return its path."""
     from skisnow._atomic import atomic_write
+    from skisnow._names import file_stem
 
-    path = Path(out_dir) / f"{study.ski.name}_report.html"
+    # a ski's name is a label, never a path: sanitised, the page stays inside out_dir
+    path = Path(out_dir) / f"{file_stem(study.ski.name)}_report.html"
     return atomic_write(
         path,
         build_report(study, cycles=cycles, fleet=fleet, explorer=explorer, real_cases=real_cases),
