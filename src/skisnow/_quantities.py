@@ -337,8 +337,13 @@ QUANTITIES: dict[str, Quantity] = {
     "fraction": Quantity(
         name="fraction", unit="(fraction)", low=0.0, plausible=(0.0, 100.0), typical=0.1,
     ),
-    "stiffness_ratio": Quantity(
-        name="stiffness scale factor", unit="(factor)", low=0.0, low_open=True,
-        plausible=(1e-3, 1e3), typical=1.0,
+    "ratio": Quantity(
+        name="ratio", unit="(factor)", low=0.0, low_open=True, plausible=(1e-3, 1e3),
+        typical=1.5,
+    ),
+    "ski_stiffness": Quantity(
+        name="ski stiffness (load per mm of closing)", unit="N/mm", low=0.0, low_open=True,
+        plausible=(5.0, 5000.0), alternatives=(("N/m", 1e-3, 0.0), ("kN/mm", 1e3, 0.0)),
+        typical=230.0,
     ),
 }  # fmt: skip

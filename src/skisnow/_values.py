@@ -12,7 +12,10 @@ from numpy.typing import ArrayLike, NDArray
 
 from skisnow._errors import InputError
 
-__all__ = ["parse_values", "sorted_unique"]
+__all__ = ["MAX_VALUES", "parse_values", "sorted_unique"]
+
+#: The most values one grid option may hold (each is at least one contact solve).
+MAX_VALUES = 1_000_000
 
 
 def parse_values(text: str, *, name: str = "values") -> np.ndarray:
@@ -35,6 +38,11 @@ def parse_values(text: str, *, name: str = "values") -> np.ndarray:
                     f"{name}: range {text!r} needs step > 0 and stop >= start (start:stop:step)"
                 )
             n = math.floor((stop - start) / step + 1e-9) + 1
+            if n > MAX_VALUES:  # counted before anything is allocated
+                raise InputError(
+                    f"{name}: range {text!r} holds {n:,} values, more than the {MAX_VALUES:,} "
+                    "a grid may have; use a larger step"
+                )
             # Rounded so that 20:400:20 gives exactly 20.0, 40.0, ... (no accumulated float noise).
             return np.round(start + step * np.arange(n), 9)
         values = np.array([float(p) for p in text.split(",") if p.strip() != ""])

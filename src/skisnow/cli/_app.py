@@ -189,11 +189,20 @@ def main(argv: list[str] | None = None) -> int:
     return EXIT_OK
 
 
+def build_command() -> Any:
+    """The Click command of :data:`app` with the option gate installed
+    (:func:`skisnow.cli._options.install_gate`: every numeric option checked before any command
+    runs)."""
+    from skisnow.cli._options import install_gate
+
+    return install_gate(typer.main.get_command(app))
+
+
 def _run(args: list[str]) -> int:
     try:
         # In non-standalone mode Click returns the code of a `typer.Exit(code)` / Ctrl-C (130)
         # instead of raising it: pass it on, or an interrupted command would report success.
-        code = app(args=args, prog_name="skisnow", standalone_mode=False)
+        code = build_command()(args=args, prog_name="skisnow", standalone_mode=False)
     except typer.Exit as exc:
         return exc.exit_code
     except typer.Abort:
