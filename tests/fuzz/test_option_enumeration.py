@@ -20,8 +20,8 @@ import pytest
 import typer
 
 from skisnow._quantities import QUANTITIES
-from skisnow.cli import app
 from skisnow.cli import _app as cli_app
+from skisnow.cli import app
 from skisnow.cli._options import install_gate, numeric_kind, quantity_of
 
 BAD = ("nan", "inf", "-inf", "negative", "zero", "huge", "x1000", "/1000", "abc")
@@ -159,7 +159,7 @@ def test_the_override_accepts_an_implausible_value_but_never_an_impossible_one(
 ) -> None:
     from skisnow.cli import main
 
-    group, ran = gated
+    group, _ = gated
     monkeypatch.setattr(cli_app, "build_command", lambda: group)
     argv = ["contact", "--ski", "skate", "--mass-kg", "60", "--load-position-mm", "-120"]
     assert main([*argv, "--snow-modulus-mpa", "1e8"]) == 2  # in Pa: refused
