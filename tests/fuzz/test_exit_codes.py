@@ -81,3 +81,42 @@ def test_ctrl_c_in_a_sweep_is_130_and_says_what_was_kept(tmp_path, capsys, monke
             "--workers", "0", "--out", str(out)]  # fmt: skip
     assert main(args) == 130
     assert "run the same command again" in capsys.readouterr().err
+
+
+_SMALL = ["--points", "256"]
+_STARVED_COMMANDS = {
+    "sweep": ["sweep", "--ski", "skate", "--mass-kg", "60", "--snow-modulus-mpa", "100",
+              "--workers", "0", *_SMALL, "--out", "{tmp}/s.zarr"],
+    "report": ["report", "skate", "--mass-kg", "60", "--snow-modulus-mpa", "100", "--workers",
+               "0", "--stride", "none", *_SMALL, "--out", "{tmp}/r"],
+    "explore": ["explore", "skate", "--mass-kg", "60", "--load-position-mm", "-120",
+                "--snow-modulus-mpa", "100", "--workers", "0", "--stations", "16",
+                "--out", "{tmp}/e.html"],
+    "compare": ["compare", "skate", "classic", "--body-mass-kg", "60", "--snow-modulus-mpa",
+                "100", "--snow-range-mpa", "100,200", *_SMALL],
+    "pairs": ["pairs", "skate", "classic", "--body-mass-kg", "60", "--snow-modulus-mpa", "100",
+              *_SMALL],
+    "cycle": ["cycle", "skate", "--template", "diagonal", "--body-mass-kg", "60", "--frames",
+              "3", "--snow-modulus-mpa", "100", *_SMALL],
+}  # fmt: skip
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("command", list(_STARVED_COMMANDS))
+def test_every_command_exits_3_naming_the_unconverged_solves(
+    command, tmp_path, capsys, monkeypatch
+) -> None:
+    """Every solve starved of iterations: the command still writes its result, and exits 3
+    with the count of unconverged solves and the first named."""
+    import skisnow.contact
+
+    original = skisnow.contact.solve_contact
+
+    def starved(*args, **kwargs):
+        return original(*args, **{**kwargs, "max_iter": 2})
+
+    monkeypatch.setattr(skisnow.contact, "solve_contact", starved)
+    argv = [a.replace("{tmp}", str(tmp_path)) for a in _STARVED_COMMANDS[command]]
+    assert main(argv) == 3
+    err = " ".join(capsys.readouterr().err.split())
+    assert "did not converge (first: skate" in err and "kg at" in err, err

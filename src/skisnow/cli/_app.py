@@ -60,13 +60,24 @@ app = typer.Typer(
 
 #: Per-run state: --debug, the convergence reported by commands, the warnings (domain,
 #: extrapolation) raised or reported during the run.
-_state: dict[str, Any] = {"debug": False, "converged": None, "warnings": [], "shown": set()}
+_state: dict[str, Any] = {"debug": False, "converged": None, "warnings": [], "shown": set(),
+                          "unconverged": []}  # fmt: skip
 
 
 def report_converged(converged: bool) -> None:
     """Called by a command after a solve: an unconverged one makes the run exit with 3."""
     prev = _state.get("converged")
     _state["converged"] = bool(converged) if prev is None else (prev and bool(converged))
+
+
+def report_unconverged(labels: list[str] | tuple[str, ...]) -> None:
+    """Called by a command whose solves ran elsewhere (Dask workers; read from a sweep's store):
+    each label names an unconverged solve; any makes the run exit with 3."""
+    for label in labels:
+        if label not in _state["unconverged"]:
+            _state["unconverged"].append(label)
+    if labels:
+        report_converged(False)
 
 
 def report_domain_warnings(messages: list[str] | tuple[str, ...], *, shown: bool = False) -> None:
@@ -157,7 +168,8 @@ def _renamed(args: list[str]) -> list[str]:
 def main(argv: list[str] | None = None) -> int:
     """Run the CLI; return the exit code (see :data:`EXIT_CODES`; errors: one line on stderr)."""
     args = _renamed(sys.argv[1:] if argv is None else argv)
-    _state.update(debug="--debug" in args, converged=None, warnings=[], shown=set())
+    _state.update(debug="--debug" in args, converged=None, warnings=[], shown=set(),
+                  unconverged=[])  # fmt: skip
     from skisnow._checks import _ALLOW
     from skisnow._errors import DomainWarning
 
@@ -166,7 +178,11 @@ def main(argv: list[str] | None = None) -> int:
         warnings.simplefilter("always", DomainWarning)
         _state["caught"] = caught
         try:
-            code = _run(args)
+            from skisnow.pipeline import recording_unconverged
+
+            with recording_unconverged() as log:
+                code = _run(args)
+            report_unconverged(log)  # every solve of this process that did not converge
         finally:
             _ALLOW.reset(token)
             _state["caught"] = None
@@ -182,7 +198,13 @@ def main(argv: list[str] | None = None) -> int:
         if m not in _state["shown"]:
             typer.echo(f"skisnow: warning: {printable(m)}", err=True)
     if _state["converged"] is False:
-        typer.echo("skisnow: warning: the solver did not converge (exit code 3)", err=True)
+        bad = _state["unconverged"]
+        which = (
+            f"{len(bad)} solve(s) did not converge (first: {printable('; '.join(bad[:3]))})"
+            if bad
+            else "the solver did not converge"
+        )
+        typer.echo(f"skisnow: warning: {which} (exit code 3)", err=True)
         return EXIT_NOT_CONVERGED
     if _state["warnings"]:
         return EXIT_OUT_OF_DOMAIN

@@ -8,7 +8,7 @@ from typing import Annotated
 
 import typer
 
-from skisnow.cli._app import app
+from skisnow.cli._app import app, report_unconverged
 from skisnow.cli._media import SnowOption, SnowTemperatureOption
 from skisnow.cli._render import (
     DaskWorkersOption,
@@ -110,6 +110,10 @@ def explore(
     seconds = time.perf_counter() - start
     size_mb = out.stat().st_size / 1e6
     n_ok, n_all = int(ds["converged"].sum()), int(ds["converged"].size)
+    from skisnow.sweep import unconverged_points
+
+    unconverged, not_carried = unconverged_points(ds)
+    report_unconverged(unconverged)  # exit 3, the first named
     if json_out:
         emit_json(
             {
@@ -123,11 +127,13 @@ def explore(
                 },
                 # a map's corner whose load the ski cannot carry is not solved (shown greyed)
                 "points_converged": n_ok,
-                "converged": n_ok == n_all,
+                "points_not_carried": not_carried,
+                "unconverged_points": len(unconverged),
+                "converged": not unconverged,
             }
         )
     else:
         err_console.print(
-            f"wrote {out} ({size_mb:.2f} MB, {n_all} points, {n_ok} converged, {seconds:.1f} s, "
-            f"{source} route for the rigid ski)"
+            f"wrote {out} ({size_mb:.2f} MB, {n_all} points, {n_ok} converged, {not_carried} "
+            f"not carried, {seconds:.1f} s, {source} route for the rigid ski)"
         )

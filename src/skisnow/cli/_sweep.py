@@ -9,7 +9,7 @@ import typer
 
 from skisnow._errors import InputError
 from skisnow._names import file_stem
-from skisnow.cli._app import app
+from skisnow.cli._app import app, report_unconverged
 from skisnow.cli._media import (
     BaseOption,
     FilmCutoffOption,
@@ -100,7 +100,14 @@ def sweep(
     """
     from skisnow._checks import check_grid_points, check_option_values
     from skisnow.constants import MM, MPA
-    from skisnow.sweep import SweepSpec, open_sweep, parse_values, run_sweep, save_netcdf
+    from skisnow.sweep import (
+        SweepSpec,
+        open_sweep,
+        parse_values,
+        run_sweep,
+        save_netcdf,
+        unconverged_points,
+    )
 
     # Every input is checked BEFORE anything is created: a typo never poisons --out.
     check_grid_points(n_points, where="--points")
@@ -182,8 +189,11 @@ def sweep(
     finally:
         bar.close()
     exported = None
+    ds = open_sweep(out)
+    unconverged, not_carried = unconverged_points(ds)  # also those solved by Dask workers
+    report_unconverged(unconverged)  # exit 3, the first named
     if netcdf is not None:
-        exported = save_netcdf(open_sweep(out), netcdf)
+        exported = save_netcdf(ds, netcdf)
     doc = {
         "store": str(out),
         "netcdf": None if exported is None else str(exported),
@@ -193,6 +203,8 @@ def sweep(
         "computed_chunks": len(run.computed),
         "skipped_chunks": len(run.skipped),
         "computed": [list(k) for k in run.computed],
+        "unconverged_points": len(unconverged),
+        "points_not_carried": not_carried,
         "workers": run.workers,
         "wall_time_s": run.wall_time,
         "compute_time_s": run.compute_time,
@@ -336,6 +348,9 @@ def report(
             ski_model=ski_model,
             progress=bar,
         )  # fmt: skip
+    from skisnow.sweep import unconverged_points
+
+    report_unconverged(unconverged_points(study.maps)[0])  # the maps' solves (any worker)
     from skisnow.workflows import TEMPLATES, compare_fleet, run_cycle, template_history
 
     cycles = []

@@ -201,6 +201,7 @@ def explorer_from_sweeps(sweeps: Mapping[str, Any], spec: Any, *, snow: Any = No
                     "skisnow.explore.explorer_spec_options"
                     + (" and the base and snow of the real contact" if base else "")
                 )
+            keep += ["iterations"] if "iterations" in ds else []  # "not carried" told apart
             parts.append(ds[keep].sel(zone=list(ZONES)))
         per_model.append(xr.concat(parts, dim=xr.DataArray(names, dims="base", name="base")))
     ds = xr.concat(per_model, dim=xr.DataArray(models, dims="model", name="model"))

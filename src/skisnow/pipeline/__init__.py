@@ -33,6 +33,7 @@ from skisnow.pipeline._profiles import (
     stations,
 )
 from skisnow.pipeline._real import station_masks, zone_station_masks
+from skisnow.pipeline._record import note_unconverged, recording_unconverged
 
 _LAZY = dict.fromkeys(
     ("MAP_MASSES", "MAP_MODULI", "STANDARD_SNOWS", "SkiStudy", "standard_cases", "study_ski"),
@@ -54,6 +55,8 @@ __all__ = [
     "Case",
     "SkiStudy",
     "loaded_profiles",
+    "note_unconverged",
+    "recording_unconverged",
     "resolve_ski",
     "shipped_twin",
     "solve_case",

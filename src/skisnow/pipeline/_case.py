@@ -28,6 +28,7 @@ from skisnow.pipeline._profiles import (
     resolve_ski,
     stations,
 )
+from skisnow.pipeline._record import note_unconverged
 
 if TYPE_CHECKING:
     from skisnow.contact import (
@@ -179,6 +180,16 @@ def _given_profile(profile: tuple[ArrayLike, ArrayLike], label: str, mass: float
         # the sweep's batched beam profiles mark a load the ski cannot carry by a NaN row
         raise UnsupportedLoadError(f"no loaded profile of {label} at m = {mass:g} kg")
     return x, h
+
+
+def _noted(case: Case) -> Case:
+    """``case``, its non-convergence recorded for the run (:mod:`skisnow.pipeline._record`)."""
+    if not case.converged:
+        note_unconverged(
+            f"{case.label} {case.mass:g} kg at {case.load_position * 1e3:g} mm on "
+            f"{case.snow_modulus / 1e6:g} MPa"
+        )
+    return case
 
 
 def solve_case(
@@ -360,27 +371,29 @@ def solve_case(
             f"contact solver did not converge in {solution.iterations} iterations "
             f"(residual {solution.residual:.3g}): {solution.message}"
         )
-    return Case(
-        ski=s,
-        label=name,
-        mass=m,
-        load_position=xm,
-        snow_modulus=e,
-        model=model,
-        profile_source=source,
-        n_points=int(x.size),
-        modulus=float(modulus),
-        width=float(ski_width),
-        kick_zone=kick_zone,
-        x=x,
-        height=h,
-        solution=solution,
-        zones=zones,
-        converged=bool(solution.converged),
-        warnings=tuple(notes),
-        snow=media.snow,
-        texture=media.base,
-        real=real,
+    return _noted(
+        Case(
+            ski=s,
+            label=name,
+            mass=m,
+            load_position=xm,
+            snow_modulus=e,
+            model=model,
+            profile_source=source,
+            n_points=int(x.size),
+            modulus=float(modulus),
+            width=float(ski_width),
+            kick_zone=kick_zone,
+            x=x,
+            height=h,
+            solution=solution,
+            zones=zones,
+            converged=bool(solution.converged),
+            warnings=tuple(notes),
+            snow=media.snow,
+            texture=media.base,
+            real=real,
+        )
     )
 
 
@@ -450,27 +463,29 @@ def _flexible_case(
         notes.append(f"flexible solve did not converge: {solution.message}")
     zones = contact_zones(solution, kick_zone=s.kick_zone)
     height = solution.height if solution.height.ndim == 1 else solution.height[:, 0]
-    return Case(
-        ski=s,
-        label=s.name,
-        mass=m,
-        load_position=xm,
-        snow_modulus=e,
-        model=model,
-        profile_source="beam",
-        n_points=int(x.size),
-        modulus=float(modulus),
-        width=float(s.width),
-        kick_zone=s.kick_zone,
-        x=x,
-        height=np.asarray(height),
-        solution=solution,
-        zones=zones,
-        converged=bool(flex.converged),
-        warnings=tuple(notes),
-        ski_model="flexible",
-        flexible=flex,
-        snow=media.snow,
-        texture=media.base,
-        real=real,
+    return _noted(
+        Case(
+            ski=s,
+            label=s.name,
+            mass=m,
+            load_position=xm,
+            snow_modulus=e,
+            model=model,
+            profile_source="beam",
+            n_points=int(x.size),
+            modulus=float(modulus),
+            width=float(s.width),
+            kick_zone=s.kick_zone,
+            x=x,
+            height=np.asarray(height),
+            solution=solution,
+            zones=zones,
+            converged=bool(flex.converged),
+            warnings=tuple(notes),
+            ski_model="flexible",
+            flexible=flex,
+            snow=media.snow,
+            texture=media.base,
+            real=real,
+        )
     )

@@ -14,7 +14,7 @@ snow_modulus_mpa, zone`` written chunk by chunk into a Zarr store (see :mod:`._s
 May import: ski, pipeline, snow, multiscale
 """
 
-from skisnow.sweep._fields import block_mean, station_fields, zone_codes
+from skisnow.sweep._fields import block_mean, station_fields, unconverged_points, zone_codes
 from skisnow.sweep._grid import (
     MODELS,
     PAPER_BASE_MODULUS,
@@ -76,5 +76,6 @@ __all__ = [
     "save_netcdf",
     "solve_point",
     "station_fields",
+    "unconverged_points",
     "zone_codes",
 ]

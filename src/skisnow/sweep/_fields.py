@@ -44,3 +44,21 @@ def station_fields(solution, zones, n_stations: int) -> dict[str, np.ndarray]:
         "snow_um": -block_mean(s.displacement, n_stations) * 1e6,
         "zone_code": zone_codes(s.x, zones, n_stations),
     }
+
+
+def unconverged_points(ds) -> tuple[list[str], int]:
+    """The points of a sweep dataset whose contact solve ran and did not converge, named
+    (``"skate 60 kg at -120 mm on 100 MPa"``), and the number of points whose load the ski
+    could not carry (not solved: ``iterations`` 0; a corner of a map, not a failure)."""
+    conv, its = ds["converged"], ds["iterations"]
+    failed = (~conv.astype(bool)) & (its > 0)
+    not_carried = int(((~conv.astype(bool)) & (its == 0)).sum())
+    labels = []
+    for point in failed.where(failed, drop=True).stack(p=failed.dims)["p"].values:
+        where = dict(zip(failed.dims, point, strict=True))
+        model = "".join(f" ({where[k]})" for k in ("model", "base") if where.get(k, "") != "")
+        labels.append(
+            f"{where['ski']}{model} {where['mass_kg']:g} kg at {where['load_position_mm']:g} mm "
+            f"on {where['snow_modulus_mpa']:g} MPa"
+        )
+    return labels, not_carried
