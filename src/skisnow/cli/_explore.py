@@ -91,6 +91,23 @@ def explore(
         snow_moduli=tuple(1e6 * parse_values(snow_modulus_mpa, name="--snow-modulus-mpa")),
         n_display=stations,
     )
+    from skisnow._checks import check_memory
+    from skisnow._resources import check_solves
+
+    if len(set(ski)) != len(ski):
+        raise InputError("SKI: each ski once (a ski given twice)")
+    n_models = 2 if ski_model == "both" else 1
+    points = len(ski) * n_models * len(grid.masses) * len(grid.load_positions) * len(
+        grid.snow_moduli)  # fmt: skip
+    what = f"a page of {points:,} points ({len(grid.masses)} masses x "
+    what += f"{len(grid.load_positions)} positions x {len(grid.snow_moduli)} moduli)"
+    check_solves(points, where="--mass-kg x --load-position-mm x --snow-modulus-mpa", what=what,
+                 hint="use coarser grids")  # fmt: skip
+    # per point: 3 curves (float64 in memory, float32 stored) and the zone codes on the
+    # display stations, 7 zones x 7 metrics; twice for the page's copy
+    check_memory(2 * points * (grid.n_display * 37 + 7 * 7 * 8), where="--mass-kg x "
+                 "--load-position-mm x --snow-modulus-mpa x --stations", what=what,
+                 hint="use coarser grids or fewer --stations")  # fmt: skip
     source = resolve_profile_source(profile_source, list(ski))
     start = time.perf_counter()
     with progress_bar("explorer", transient=False) as bar:

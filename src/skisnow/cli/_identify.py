@@ -60,6 +60,13 @@ def identify(
     if out.suffix.lower() != ".json":
         raise InputError(f"--out {out}: the identified ski is written as a ski file (.json)")
     bench = read_bench(bench_file)
+    from skisnow._checks import check_memory
+
+    # the fit's Jacobian: one row per bench sample, one column per spline coefficient
+    rows = len(bench.table)
+    check_memory(8.0 * rows * (n_stiffness + n_camber) * 4, where="--n-stiffness, --n-camber",
+                 what=f"a fit of {rows:,} samples x {n_stiffness + n_camber} coefficients",
+                 hint="use fewer coefficients")  # fmt: skip
 
     def say(msg: str) -> None:
         if not json_out:

@@ -172,6 +172,14 @@ def sweep(
     if spec.base:  # the micro curves once, here (the workers read them from the cache)
         spec.micro_curves()
     n_chunks = len(spec.chunks())
+    from skisnow._checks import check_memory
+    from skisnow._resources import check_solves
+
+    what = f"a sweep of {spec.n_points_total:,} points"
+    check_solves(spec.n_points_total, where="--ski x --mass-kg x --load-position-mm x "
+                 "--snow-modulus-mpa", what=what, hint="use coarser grids")  # fmt: skip
+    check_memory(spec.n_points_total * len(spec.zones) * 10 * 8, where="the sweep's grid",
+                 what=f"{what} read back", hint="use coarser grids")  # fmt: skip
     # the bar starts with the first finished chunk (not before the store checks)
     bar = progress_bar(f"sweep {out.name}", transient=False)
     try:
@@ -313,9 +321,14 @@ def report(
     """Write one self-contained HTML report of a ski (metrics, zones at standard loads, maps,
     the contact over a stride, a fleet table with --compare-with, a linked explorer page
     with --explorer, and the real contact with --base and --snow)."""
+    # every option and every ski checked before anything is computed or written
+    from skisnow._resources import check_solves
     from skisnow.cli._media import resolve_base, resolve_snow
+    from skisnow.pipeline import PROFILE_SOURCES, SKI_MODELS
     from skisnow.report import study_ski, write_report
+    from skisnow.ski import SHIPPED_SKIS, get_ski
     from skisnow.sweep import parse_values
+    from skisnow.workflows import TEMPLATES
 
     snow_obj, _ = resolve_snow(snow, None, temperature_c=snow_temperature_c, required=False)
     texture = resolve_base(base, snow_obj)
@@ -324,6 +337,28 @@ def report(
     if snow_modulus_mpa is None:
         snow_modulus_mpa = "20:400:40"
 
+    if stride not in ("auto", "none", *TEMPLATES):
+        raise InputError(f"--stride must be auto, none or one of {', '.join(TEMPLATES)}, "
+                         f"got {stride!r}")  # fmt: skip
+    if ski_model not in SKI_MODELS:
+        raise InputError(f"--ski-model must be one of {', '.join(SKI_MODELS)}, got {ski_model!r}")
+    if profile_source not in (*PROFILE_SOURCES, "auto"):
+        raise InputError(f"--profile-source must be one of {', '.join(PROFILE_SOURCES)}, auto; "
+                         f"got {profile_source!r}")  # fmt: skip
+    try:
+        get_ski(ski)
+    except InputError as exc:
+        raise type(exc)(f"SKI: {exc}") from None
+    for other in compare_with or ():
+        if other not in SHIPPED_SKIS and not Path(other).is_file():
+            raise InputError(f"--compare-with {other!r}: neither a shipped ski "
+                             f"({', '.join(SHIPPED_SKIS)}) nor an existing file")  # fmt: skip
+    if len(set([ski, *(compare_with or ())])) != 1 + len(compare_with or ()):
+        raise InputError("--compare-with: each ski once (a ski compared with itself says nothing)")
+    n_maps = len(parse_values(mass_kg, name="--mass-kg")) * len(
+        parse_values(snow_modulus_mpa, name="--snow-modulus-mpa"))  # fmt: skip
+    check_solves(n_maps, where="--mass-kg x --snow-modulus-mpa", what=f"maps of {n_maps} points",
+                 hint="use coarser grids")  # fmt: skip
     source = resolve_profile_source(profile_source, [ski])
     # output names from the ski's name: a label made safe, never a path (stays inside --out)
     stem = file_stem(Path(ski).stem if ski.lower().endswith(".json") else ski)
@@ -357,8 +392,6 @@ def report(
     if stride == "auto":
         stride = "diagonal" if study.ski.kind == "classic" else "skate_g3"
     if stride != "none":
-        if stride not in TEMPLATES:
-            raise InputError(f"--stride must be auto, none or one of {', '.join(TEMPLATES)}")
         history = template_history(stride, body_mass=body_mass_kg)
         with progress_bar(f"stride {stride}", disable=json_out) as bar:
             cycles.append(

@@ -86,6 +86,16 @@ def friction_assumptions(friction: object, snow: object) -> str:
     return friction.resolve(temperature_c=snow.temperature_c, hardness=h).assumptions()  # type: ignore[attr-defined]
 
 
+def _check_fleet(skis: Sequence[str]) -> None:
+    """A fleet names each ski once (``pairs classic classic`` would pair a ski with itself)."""
+    twice = sorted({s for s in skis if list(skis).count(s) > 1})
+    if twice:
+        raise InputError(
+            f"SKIS: {', '.join(repr(s) for s in twice)} given twice; name each ski of the fleet "
+            "once (two skis of the same content are compared as two, tied)"
+        )
+
+
 def _report_failures(failures: Sequence[tuple[str, str]]) -> None:
     for spec, message in failures:
         say(f"not compared: {spec}: {message}", style="bold red")
@@ -189,6 +199,7 @@ def compare(
     from skisnow.workflows import CRITERIA, PROXIES, compare_fleet, rank_across_snow
 
     _check_positive("--body-mass-kg", body_mass_kg)
+    _check_fleet(skis)
     snow_obj, e = resolve_snow(snow, snow_modulus_mpa, temperature_c=snow_temperature_c)
     snow_modulus_mpa = e * 1e-6
     if base and snow_obj is None:
@@ -386,6 +397,7 @@ def pairs(
     )
 
     _check_positive("--body-mass-kg", body_mass_kg)
+    _check_fleet(skis)
     snow_modulus_mpa = resolve_snow(snow, snow_modulus_mpa)[1] * 1e-6
     with progress_bar("pairs", disable=json_out) as update:
         result = match_pairs(

@@ -214,6 +214,16 @@ def cycle(
         assert load_history is not None
         h = read_load_history(load_history)
         histories.append((load_history.stem, h.resample(frames) if frames else h))
+    from skisnow._checks import check_memory
+    from skisnow._resources import check_solves
+
+    n_frames = sum(h.time.size for _, h in histories)
+    where = "--frames" if frames or template is not None else f"--load-history {load_history}"
+    check_solves(n_frames, where=where, what=f"{n_frames:,} frames",
+                 hint="resample it with --frames, or cut it into cycles")  # fmt: skip
+    per_frame = 7 * 8 * 8 + (2 * 8 * points if animation is not None else 0)
+    check_memory(n_frames * per_frame, where=where, what=f"{n_frames:,} frames of {points} "
+                 "stations", hint="use fewer --frames")  # fmt: skip
     results = []
     for name, history in histories:
         with progress_bar(f"cycle {name}", disable=json_out) as update:
