@@ -254,7 +254,12 @@ QUANTITIES: dict[str, Quantity] = {
     ),
     "mean_load": Quantity(
         name="mean load over a history (impulse / duration, as a mass)", unit="kg", low=0.0,
-        plausible=(0.0, 300.0), alternatives=(("g", 1e-3, 0.0),), typical=50.0,
+        plausible=(1.0, 300.0), alternatives=(("g", 1e-3, 0.0),), typical=50.0,
+    ),
+    "mean_force": Quantity(
+        name="mean force over a history (impulse / duration)", unit="N", low=0.0,
+        plausible=(10.0, 3000.0), alternatives=(("kN", 1e3, 0.0), ("mN", 1e-3, 0.0)),
+        typical=500.0,
     ),
     "cycle_time": Quantity(
         name="cycle time of a stride", unit="s", low=0.0, low_open=True, plausible=(0.1, 20.0),

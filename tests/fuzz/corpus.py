@@ -17,7 +17,11 @@ A clean rejection *names its place* when the message contains the option or the 
 where the case knows it, the row or column; it *says what is valid* when it says what was
 expected.
 
-Run ``uv run python tests/fuzz/corpus.py`` to print the tally (``--cases`` lists each case).
+Run ``uv run python tests/fuzz/corpus.py`` to print the tally (``--cases`` lists each case,
+``--timeout S`` stops a case still computing after S seconds, ``--only TEXT`` runs the cases
+whose group or id holds TEXT). The cases of the doors added later (ski files, load histories,
+fleets, the explorer and report options, side-cars, re-signed models, archive bombs, nested
+JSON, name injection) are in ``corpus_doors.py``.
 """
 
 from __future__ import annotations
@@ -68,6 +72,12 @@ class Case:
     place: list[str]  # every entry must appear in the message; "a|b" means a or b
     post: Callable[[], str | None] | None = None  # returns a problem, or None
     group: str = ""
+    #: "refuse" (a malformed input) or "accept" (a valid but hostile one: a ski named
+    #: "</script>" must be accepted, its name escaped wherever it goes; ``post`` checks that)
+    expect: str = "refuse"
+    env: dict[str, str] = field(default_factory=dict)  # environment of the run (memory limit)
+    #: checks the text the run printed (stdout and stderr): returns a problem, or None
+    post_output: Callable[[str], str | None] | None = None
 
 
 @dataclass
@@ -705,8 +715,10 @@ def sweep_cases(d: Path) -> list[Case]:
 def build_corpus(d: Path) -> list[Case]:
     """All cases, with their fixture files written under ``d``."""
     d.mkdir(parents=True, exist_ok=True)
+    from corpus_doors import DOOR_GROUPS
+
     groups = (bench_cases, virtual_bench_cases, profile_cases, topography_cases, rank_cases,
-              model_cases, sweep_cases)  # fmt: skip
+              model_cases, sweep_cases, *DOOR_GROUPS)  # fmt: skip
     cases: list[Case] = []
     for g in groups:
         sub = d / g.__name__
@@ -721,12 +733,27 @@ def build_corpus(d: Path) -> list[Case]:
 # running and classifying
 
 
-def run_case(case: Case) -> Outcome:
+class CaseTimeout(BaseException):
+    """A case still computing after the time limit (``main --timeout``): it was accepted."""
+
+
+def run_case(case: Case, timeout: float | None = None) -> Outcome:
     from skisnow.cli import main
+
+    if timeout:
+        import signal
+
+        def _alarm(*_):
+            raise CaseTimeout(f"still computing after {timeout:g} s")
+
+        signal.signal(signal.SIGALRM, _alarm)
+        signal.setitimer(signal.ITIMER_REAL, timeout)
 
     out, err = io.StringIO(), io.StringIO()
     t0 = time.perf_counter()
     escaped = None
+    saved = {k: os.environ.get(k) for k in case.env}
+    os.environ.update(case.env)
     with (
         warnings.catch_warnings(record=True) as caught,
         contextlib.redirect_stdout(out),
@@ -740,23 +767,39 @@ def run_case(case: Case) -> Outcome:
         except BaseException as exc:
             escaped = exc
             code = -1
+        finally:
+            if timeout:
+                signal.setitimer(signal.ITIMER_REAL, 0)
+            for k, v in saved.items():
+                if v is None:
+                    os.environ.pop(k, None)
+                else:
+                    os.environ[k] = v
     seconds = time.perf_counter() - t0
     message = err.getvalue().strip()
     if escaped is not None:
         message = f"{type(escaped).__name__}: {escaped}"
     names = re.findall(r"\[(\w+)\]\s*$", message)
-    if escaped is not None or (code != 0 and names and names[-1] not in CLEAN_ERRORS):
+    if isinstance(escaped, CaseTimeout):
+        kind = "timeout"
+    elif escaped is not None or (code != 0 and names and names[-1] not in CLEAN_ERRORS):
         kind = "traceback"
+    elif case.expect == "accept":  # a valid input: computed (0, 3 or 4), never refused
+        kind = "clean" if code in (0, 3, 4) else "refused"
     elif code == 0:
         kind = "silent"
     else:
         kind = "clean"
     problem = case.post() if case.post is not None else None
+    if not problem and case.post_output is not None:
+        problem = case.post_output(out.getvalue() + err.getvalue())
     if problem:
         kind = "side effect"
         message += f" [{problem}]"
     low = message.lower()
-    names_place = all(any(alt.lower() in low for alt in p.split("|")) for p in case.place)
+    names_place = case.expect == "accept" or all(
+        any(alt.lower() in low for alt in p.split("|")) for p in case.place
+    )
     return Outcome(
         case=case,
         kind=kind,
@@ -778,6 +821,8 @@ def tally(outcomes: list[Outcome]) -> dict[str, int]:
         "silent": counts["silent"],
         "traceback": counts["traceback"],
         "side effect": counts["side effect"],
+        "refused (valid input)": counts["refused"],
+        "timeout": counts["timeout"],
         "names place": sum(o.names_place for o in clean),
         "says what is valid": sum(o.says_valid for o in clean),
     }
@@ -798,8 +843,14 @@ def main(argv: list[str] | None = None) -> int:
         cases = build_corpus(Path(tmp) / "corpus")
         t1 = time.perf_counter()
         outcomes = []
+        timeout = None
+        if "--timeout" in args:
+            timeout = float(args[args.index("--timeout") + 1])
+        only = args[args.index("--only") + 1] if "--only" in args else None
         for c in cases:
-            outcomes.append(run_case(c))
+            if only and only not in c.group and only not in c.id:
+                continue
+            outcomes.append(run_case(c, timeout))
             print(f"{outcomes[-1].kind:11s} {c.id}", file=sys.stderr, flush=True)
         t2 = time.perf_counter()
     for o in outcomes:

@@ -94,8 +94,14 @@ def explore(
     from skisnow._checks import check_memory
     from skisnow._resources import check_solves
 
-    if len(set(ski)) != len(ski):
-        raise InputError("SKI: each ski once (a ski given twice)")
+    twice = sorted({s for s in ski if ski.count(s) > 1})
+    if twice:
+        raise InputError(f"SKI: {', '.join(map(repr, twice))} given twice; give each ski once")
+    from skisnow.pipeline import PROFILE_SOURCES
+
+    if profile_source not in (*PROFILE_SOURCES, "auto"):
+        raise InputError(f"--profile-source must be one of {', '.join(PROFILE_SOURCES)}, auto; "
+                         f"got {profile_source!r}")  # fmt: skip
     n_models = 2 if ski_model == "both" else 1
     points = len(ski) * n_models * len(grid.masses) * len(grid.load_positions) * len(
         grid.snow_moduli)  # fmt: skip

@@ -153,9 +153,12 @@ def predict(
     x = np.clip(np.arange(k0, k1 + 1) * dx_mm * 1e-3, d.x_min, d.x_max)
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", DomainWarning)
-        h, spread = net.predict_with_spread(
-            x, mass_kg, load_position_mm * 1e-3, on_domain_error="raise" if strict else "warn"
-        )
+        try:
+            h, spread = net.predict_with_spread(
+                x, mass_kg, load_position_mm * 1e-3, on_domain_error="raise" if strict else "warn"
+            )
+        except InputError as exc:  # name the model file (a re-scaled model predicts metres)
+            raise type(exc)(f"MODEL {model}: {exc}") from None
     notes = [str(w.message) for w in caught if issubclass(w.category, DomainWarning)]
     for n in notes:
         say(f"warning: {n}", style="yellow")

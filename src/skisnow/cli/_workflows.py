@@ -200,6 +200,8 @@ def compare(
 
     _check_positive("--body-mass-kg", body_mass_kg)
     _check_fleet(skis)
+    if ski_model not in ("rigid", "flexible"):
+        raise InputError(f"--ski-model must be rigid or flexible, got {ski_model!r}")
     snow_obj, e = resolve_snow(snow, snow_modulus_mpa, temperature_c=snow_temperature_c)
     snow_modulus_mpa = e * 1e-6
     if base and snow_obj is None:

@@ -329,7 +329,7 @@ def network_from_files(
                 f"{where}: reference profile array missing or not {n_ref} finite floats"
             )
         reference = ReferenceProfile(x_min=x0, x_max=x1, height=h_ref)
-    return CamberNetwork(
+    net = CamberNetwork(
         reference=reference,
         architecture=architecture,
         scaling=scaling,
@@ -337,6 +337,24 @@ def network_from_files(
         members=members,
         metadata=dict(doc.get("metadata", {})),
     )
+    # a file re-signed after an edit passes both checksums: the physics must still hold. The
+    # ski sits lower under the load at the heaviest trained mass than at the lightest, and its
+    # profile moves with every step of the load across the trained range (a re-scaled input
+    # saturates the network: one profile for 5, 30 and 55 kg)
+    p = 0.5 * (domain.position_min + domain.position_max)
+    masses = np.linspace(domain.mass_min, domain.mass_max, 6)
+    xs = np.linspace(domain.x_min, domain.x_max, 64)
+    h = net.predict(np.append(xs, p), masses, p, on_domain_error="ignore", clip=False)
+    moves = np.abs(np.diff(h[:, :-1], axis=0)).max(axis=1)
+    if not (np.all(np.isfinite(h)) and h[-1, -1] < h[0, -1] and moves.min() > 1e-6):
+        raise FileFormatError(
+            f"{where}: the model does not respond to the load as a ski does (at {p * 1e3:.0f} "
+            f"mm the ski sits {h[0, -1] * 1e3:.3g} mm high at {masses[0]:g} kg and "
+            f"{h[-1, -1] * 1e3:.3g} mm at {masses[-1]:g} kg; the least move of the profile "
+            f"between {len(masses)} masses is {moves.min() * 1e6:.3g} µm): its scaling or "
+            "weights were edited and re-signed, or damaged; retrain with `skisnow train`"
+        )
+    return net
 
 
 def save_network(net: CamberNetwork, path: str | Path) -> tuple[Path, Path]:

@@ -21,8 +21,14 @@ from pathlib import Path
 
 import numpy as np
 
-from skisnow._checks import check_array, check_finite_column, check_value
-from skisnow._errors import FileFormatError, InputError
+from skisnow._checks import (
+    OVERRIDE_HINT,
+    check_array,
+    check_finite_column,
+    check_value,
+    implausible_allowed,
+)
+from skisnow._errors import FileFormatError, ImplausibleValueError, InputError
 from skisnow.constants import STANDARD_GRAVITY
 
 __all__ = ["MAX_GAP_FACTOR", "LoadHistory", "check_positions", "read_load_history"]
@@ -156,15 +162,20 @@ def _validate(
                 "step between samples")  # fmt: skip
     check_value(float(t[-1] - t[0]), "history_duration", where=f"{where}, column "
                 f"{columns[0]!r}: the duration (last - first time)")  # fmt: skip
-    # a derived quantity no column shows: the impulse over the duration, as a mass on the ski
+    span = float(np.ptp(position * to_mm))
+    if 0.0 < span < 1.0 and not implausible_allowed():  # a centre of pressure moving 0.1 mm
+        raise ImplausibleValueError(
+            f"{where}, column {columns[2]!r}: the centre of pressure moves only {span:.3g} mm "
+            "over the history (a stride moves it tens of mm); were the positions given in m? "
+            f"If you really mean it, pass {OVERRIDE_HINT}."
+        )
+    # a derived quantity no column shows: the impulse over the duration, the mean load
     impulse = float(np.sum(0.5 * (load[1:] + load[:-1]) * steps))
-    mean = impulse / float(t[-1] - t[0]) / (1.0 if mass_column else STANDARD_GRAVITY)
-    check_value(
-        mean,
-        "mean_load",
-        where=f"{where}: the mean load (impulse / duration = "
-        f"{impulse:.4g} {'kg s' if mass_column else 'N s'} over {t[-1] - t[0]:.4g} s)",
-    )
+    mean = impulse / float(t[-1] - t[0])
+    check_value(mean, "mean_load" if mass_column else "mean_force",
+                where=f"{where}, column {columns[1]!r}: the mean load (impulse / duration = "
+                f"{impulse:.4g} {'kg s' if mass_column else 'N s'} over {t[-1] - t[0]:.4g} "
+                "s)")  # fmt: skip
 
 
 def read_load_history(path: str | Path, *, max_gap_factor: float = MAX_GAP_FACTOR) -> LoadHistory:
@@ -235,6 +246,12 @@ def read_load_history(path: str | Path, *, max_gap_factor: float = MAX_GAP_FACTO
             f"{', '.join(cols)}"
         )
     load_col = "force_n" if has_force else "mass_kg"
+    unknown = [c for c in cols if c not in ("t_s", "force_n", "mass_kg", "load_position_mm")]
+    if unknown:
+        raise FileFormatError(
+            f"{path}: unknown column {unknown[0]!r}; a load history has the columns t_s, "
+            "force_n or mass_kg, load_position_mm (a misspelt column would be ignored)"
+        )
     missing = [c for c in ("t_s", "load_position_mm") if c not in cols]
     if missing:
         raise FileFormatError(
@@ -264,6 +281,9 @@ def read_load_history(path: str | Path, *, max_gap_factor: float = MAX_GAP_FACTO
         )
     except InputError as exc:
         raise FileFormatError(str(exc)) from None
+    # every row is a frame of the cycle: as many as --frames may ask for
+    check_value(len(lines), "frames", where=f"{path}: {len(lines):,} rows (each a frame: "
+                "resample with --frames, or cut the history into cycles)")  # fmt: skip
     force = values[load_col] * (STANDARD_GRAVITY if load_col == "mass_kg" else 1.0)
     return LoadHistory(
         time=values["t_s"],
