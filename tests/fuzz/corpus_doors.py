@@ -430,7 +430,7 @@ def model_and_bomb_cases(d: Path) -> list[Case]:
         "mass_scale_1e-3",
         edited((("scaling", "mass_scale"), s["mass_scale"] * 1e-3)),
         npz,
-        "camber",
+        "load",
     )
     model("n_members_1000", edited((("n_members",), 1000)), npz, "n_members")
     model("width_100000", edited((("architecture", "load"), 100_000)), npz, "architecture")
