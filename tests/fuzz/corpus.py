@@ -78,6 +78,7 @@ class Case:
     env: dict[str, str] = field(default_factory=dict)  # environment of the run (memory limit)
     #: checks the text the run printed (stdout and stderr): returns a problem, or None
     post_output: Callable[[str], str | None] | None = None
+    builder: str = ""  # the function of the corpus that made it (filled in by build_corpus)
 
 
 @dataclass
@@ -723,7 +724,10 @@ def build_corpus(d: Path) -> list[Case]:
     for g in groups:
         sub = d / g.__name__
         sub.mkdir()
-        cases += g(sub)
+        made = g(sub)
+        for c in made:
+            c.builder = g.__name__
+        cases += made
     for c in cases:  # the empty placeholder of the option cases above
         c.place = [p for p in c.place if p]
     return cases
