@@ -50,7 +50,8 @@ def unconverged_points(ds) -> tuple[list[str], int]:
     """The points of a sweep dataset whose contact solve ran and did not converge, named
     (``"skate 60 kg at -120 mm on 100 MPa"``), and the number of points whose load the ski
     could not carry (not solved: ``iterations`` 0; a corner of a map, not a failure)."""
-    conv, its = ds["converged"], ds["iterations"]
+    conv = ds["converged"]
+    its = ds["iterations"] if "iterations" in ds else conv.astype(int) + 1  # all were solved
     failed = (~conv.astype(bool)) & (its > 0)
     not_carried = int(((~conv.astype(bool)) & (its == 0)).sum())
     labels = []
