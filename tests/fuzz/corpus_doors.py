@@ -521,7 +521,7 @@ def _cheap_chunk(spec, ski, position, modulus):
 
 NAMES = {
     "path_up": "../../escaped",
-    "absolute": "/tmp/skisnow-absolute",
+    "absolute": "{tmp}/absolute-escape",  # an absolute path inside the corpus's folder
     "script_comment": "</script><!--<script>",
     "quotes": "\"'<b>&amp;",
     "ansi": "\x1b[2J\x1b[31mred",
@@ -571,9 +571,10 @@ def _no_control(text: str) -> str | None:
 def name_cases(d: Path) -> list[Case]:
     cases = []
     for key, name in NAMES.items():
+        name = name.replace("{tmp}", str(d.parent))
         path = _ski_file(d, f"name_{key}", edit=_set("name", name))
         out = d / f"out_{key}"
-        outside = [d / "escaped_report.html", Path("/tmp/skisnow-absolute_report.html"),
+        outside = [d / "escaped_report.html", d.parent / "absolute-escape_report.html",
                    d.parent / "escaped_report.html"]  # fmt: skip
         cases.append(Case(
             f"report named {key}",
