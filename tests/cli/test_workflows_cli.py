@@ -45,9 +45,16 @@ def test_compare_names_a_broken_file_and_compares_the_rest(capsys, tmp_path: Pat
 
 
 def test_pairs_flags_the_worst_pair(capsys, tmp_path: Path) -> None:
+    import shutil
+
+    from skisnow.ski import shipped_ski_path
+
+    # twins: two skis of the same content (a name given twice is refused: issue 27)
+    twins = [str(shutil.copy(shipped_ski_path(n), tmp_path / f"{n}_twin.json"))
+             for n in ("classic", "skate")]  # fmt: skip
     code, doc, _ = run(
         capsys,
-        ["pairs", "classic", "skate", "classic", "skate", "--body-mass-kg", "70",
+        ["pairs", "classic", "skate", *twins, "--body-mass-kg", "70",
          "--snow-modulus-mpa", "100", "--out", str(tmp_path), *SMALL],
     )  # fmt: skip
     assert code == 0
