@@ -1,4 +1,7 @@
-"""The verification table of the micro curves (issue 28, point 3): the elastic–plastic flat-ice
+"""Micro curves: verification against analytic limits
+=====================================================
+
+The verification table of the micro curves (issue 28, point 3): the elastic–plastic flat-ice
 contact (:func:`skisnow.micro.elastoplastic_curve`, mirror-continued half-space) against its
 analytic limits and under refinement of the topography grid.
 
@@ -23,7 +26,7 @@ import numpy as np
 def main() -> None:
     import argparse
 
-    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap = argparse.ArgumentParser(description=(__doc__ or "").partition("\n")[0])
     ap.add_argument("--small", action="store_true", help="refinement down to 2 µm only")
     ap.add_argument("--out", type=Path, default=None, help="folder for the two tables (CSV)")
     args = ap.parse_args()

@@ -17,7 +17,13 @@ from skisnow._errors import InputError
 __all__ = ["EXTRAS", "MissingDependencyError", "require"]
 
 #: Which extra of ``pyproject.toml`` brings which top-level module.
-EXTRAS: dict[str, str] = {"pyarrow": "parquet"}
+EXTRAS: dict[str, str] = {
+    "pyarrow": "parquet",
+    "jax": "network",
+    "jaxlib": "network",
+    "equinox": "network",
+    "optax": "network",
+}
 
 
 class MissingDependencyError(InputError, ImportError):

@@ -9,8 +9,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
-import jax
-import jax.numpy as jnp
+from skisnow.network._jax import jax, jnp
 
 __all__ = ["make_lm_step"]
 

@@ -33,13 +33,11 @@ from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Any, Literal
 
-import equinox as eqx
-import jax
-import jax.numpy as jnp
 import numpy as np
 
 from skisnow._checks import check_value
 from skisnow._errors import DomainWarning, InputError, SolverStatus
+from skisnow.network._jax import eqx, jax, jnp
 from skisnow.network._scaling import Domain, ReferenceProfile, Scaling
 
 __all__ = [

@@ -27,15 +27,12 @@ from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Any
 
-import jax
-import jax.numpy as jnp
 import numpy as np
-import optax
 import pandas as pd
-from jax.flatten_util import ravel_pytree
 
 from skisnow._errors import ConvergenceError, InputError, SolverStatus
 from skisnow.bench import BENCH_COLUMNS, BenchData
+from skisnow.network._jax import jax, jnp, optax, ravel_pytree
 from skisnow.network._levenberg_marquardt import make_lm_step
 from skisnow.network._network import (
     Architecture,
