@@ -5,11 +5,12 @@ from __future__ import annotations
 
 import warnings
 
-import jax
-import jax.numpy as jnp
 import numpy as np
 import pytest
-from jax.flatten_util import ravel_pytree
+
+jax = pytest.importorskip("jax", reason="the camber network needs the 'network' extra")
+jnp = pytest.importorskip("jax.numpy")
+ravel_pytree = pytest.importorskip("jax.flatten_util").ravel_pytree
 
 from skisnow import DomainWarning, InputError
 from skisnow.network import Architecture, BlockNetwork, CamberNetwork, Domain, Scaling
