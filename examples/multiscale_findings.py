@@ -19,7 +19,7 @@ Issue 28, point 6, measured.
     the paper's descriptor, the grain-averaged A_fr at 20 kPa (the bearing model, eq. 5–13, as
     skisnow computes it on its stand-in grinds), and the multi-scale proxies of a ski on the
     snow (skate and classic at 1 BW, 100 MPa). Pearson r with the glide times, its p-value
-    (:func:`skisnow.micro.correlate`), the critical magnitude of r at α = 0.05 for n = 5, and the rank
+    (:func:`skisnow.micro.correlate`), the critical r at α = 0.05 for n = 5, and the rank
     agreement (Spearman ρ, and the number of grinds placed at their measured rank).
     Nothing is fitted to the glide times; the grinds are stand-ins built to the roughness of
     Tables 1 and 4 (a calibration to roughness, not to glide).

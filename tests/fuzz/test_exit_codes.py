@@ -7,6 +7,7 @@ import json
 
 import pytest
 
+from _extras import needs_network
 from skisnow import __version__
 from skisnow.cli import main
 from skisnow.cli._app import EXIT_CODES
@@ -53,6 +54,7 @@ def test_unconverged_contact_is_3_and_says_so(capsys, monkeypatch) -> None:
     assert "did not converge" in captured.err
 
 
+@needs_network
 def test_outside_the_trained_domain_is_4_and_listed(capsys) -> None:
     # 200 kg on the skate's network, trained on 5..130 kg: computed, flagged, exit 4
     code = main([*CONTACT[:-1], "--mass-kg", "200", "--profile-source", "network", "--json"])

@@ -7,21 +7,19 @@ the network is for), thinned to keep JIT compile and training within the test bu
 
 from __future__ import annotations
 
-import importlib.util
-
 import numpy as np
 import pytest
 
-#: The camber network needs the optional ``network`` extra (JAX, Equinox, Optax); CI installs
-#: every extra, a user's clone without it skips these tests and says why.
-NO_JAX = importlib.util.find_spec("jax") is None
-NO_JAX_REASON = "the camber network needs the 'network' extra (uv sync --extra network)"
+from _extras import HAS_NETWORK, NETWORK_REASON
 
 
-@pytest.fixture(autouse=True)
+@pytest.fixture(autouse=True, scope="session")
 def _needs_network_extra() -> None:
-    if NO_JAX:
-        pytest.skip(NO_JAX_REASON)
+    """Every test here needs the optional ``network`` extra (session scope: before the
+    session-scoped network fixtures); without it they are skipped, saying why."""
+    if not HAS_NETWORK:
+        pytest.skip(NETWORK_REASON)
+
 
 SMALL_MASSES = (10.0, 40.0, 70.0, 100.0, 130.0)
 SMALL_POSITIONS = (-0.04, -0.10, -0.16, -0.24)

@@ -8,13 +8,21 @@ import warnings
 import numpy as np
 import pytest
 
-jax = pytest.importorskip("jax", reason="the camber network needs the 'network' extra")
+from _extras import NETWORK_REASON
+from skisnow import DomainWarning, InputError
+
+jax = pytest.importorskip("jax", reason=NETWORK_REASON)
 jnp = pytest.importorskip("jax.numpy")
 ravel_pytree = pytest.importorskip("jax.flatten_util").ravel_pytree
 
-from skisnow import DomainWarning, InputError
-from skisnow.network import Architecture, BlockNetwork, CamberNetwork, Domain, Scaling
-from skisnow.network._network import x64
+from skisnow.network import (  # noqa: E402  (after the skip: they need JAX)
+    Architecture,
+    BlockNetwork,
+    CamberNetwork,
+    Domain,
+    Scaling,
+)
+from skisnow.network._network import x64  # noqa: E402
 
 ARCH = Architecture.from_widths("3,5,4,6,4,3")
 

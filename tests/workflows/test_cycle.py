@@ -7,6 +7,7 @@ import numpy as np
 import pytest
 import xarray as xr
 
+from _extras import needs_network
 from skisnow import InputError
 from skisnow.constants import STANDARD_GRAVITY
 from skisnow.pipeline import solve_case
@@ -75,6 +76,7 @@ def test_time_reversal_reverses_the_results() -> None:
         np.testing.assert_allclose(a[var].values, b[var].values[::-1], rtol=1e-5, atol=1e-9)
 
 
+@needs_network
 def test_outside_the_trained_domain_the_beam_is_used_and_said() -> None:
     t = np.linspace(0, 0.2, 5)
     inside = LoadHistory(time=t, force=np.full(5, 80 * 9.81), load_position=np.full(5, -0.12))
