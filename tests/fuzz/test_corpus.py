@@ -33,12 +33,16 @@ def test_every_malformed_input_is_rejected_cleanly_and_names_its_place(tmp_path,
         print(f"\nfuzz corpus ({len(cases) - n_new} + {n_new} new cases):", counts)
     bad = [o for o in outcomes if o.kind != "clean"]
     assert not bad, "\n".join(f"{o.kind}: {o.case.id}: {o.message[:300]}" for o in bad)
-    # without the optional network extra, `train` is refused at its door naming the extra
+    # without the optional network extra, `train` and `predict` are refused naming the extra
     unnamed = [
         o
         for o in outcomes
         if not o.names_place
-        and not (not HAS_NETWORK and o.case.argv[0] == "train" and "--extra network" in o.message)
+        and not (
+            not HAS_NETWORK
+            and o.case.argv[0] in ("train", "predict")
+            and "--extra network" in o.message
+        )
     ]
     assert not unnamed, "\n".join(
         f"{o.case.id} (needs {o.case.place}): {o.message[:300]}" for o in unnamed
