@@ -18,7 +18,7 @@ from typing import Any
 import numpy as np
 from matplotlib.figure import Figure
 
-from skisnow.plot._style import COLORS, ZONE_COLORS, new_figure, style
+from skisnow.plot._style import COLORS, ZONE_COLORS, ZONE_LABELS, new_figure, style
 
 __all__ = ["plot_micro_curves", "plot_real_contact"]
 
@@ -43,8 +43,10 @@ def plot_real_contact(case: Any, *, title: str | None = None) -> Figure:
             lo, hi = x[sel].min(), x[sel].max()
             color = ZONE_COLORS.get(zone, "grey")
             for ax in (a0, a1, a2):
-                ax.axvspan(lo, hi, color=color, alpha=0.06, lw=0)
-        a0.plot(x, r.pressure * 1e-3, color=COLORS["pressure"])
+                ax.axvspan(lo, hi, color=color, alpha=0.06, lw=0,
+                           label=ZONE_LABELS[name] if ax is a0 else None)  # fmt: skip
+        a0.plot(x, r.pressure * 1e-3, color=COLORS["pressure"], label="apparent pressure")
+        a0.legend(loc="upper left", fontsize=7, ncols=2)
         a0.set_ylabel("apparent p [kPa]")
         bearing = r.apparent_area > 0
         frac = np.where(bearing, r.real_fraction, np.nan) * 100
@@ -56,7 +58,7 @@ def plot_real_contact(case: Any, *, title: str | None = None) -> Figure:
         a1.legend(loc="upper right")
         a2.semilogy(x, r.mean_separation * 1e6, color=COLORS["profile"])
         a2.set_ylabel("mean separation [µm]")
-        a2.set_xlabel("x along the ski [mm] (tail → tip)")
+        a2.set_xlabel("x from the balance point [mm] (tip →)")
         t = r.total
         est = r.friction_estimate()
         a0.set_title(
