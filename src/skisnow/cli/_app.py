@@ -90,10 +90,32 @@ def report_domain_warnings(messages: list[str] | tuple[str, ...], *, shown: bool
             _state["shown"].add(m)
 
 
+def _report_implausible() -> None:
+    """One domain warning for the implausible results the run's solves recorded
+    (:mod:`skisnow.pipeline._plausible`): how many and the first, unless a command reported
+    each already (``contact`` lists its case's warnings)."""
+    found = _state.get("implausible") or []
+    old = _state.get("implausible_summary")
+    if old in _state["warnings"]:
+        _state["warnings"].remove(old)
+    told = _state["warnings"]
+    new = [e for e in found if not any(w in e for w in told)]
+    if not new:
+        return
+    summary = (
+        new[0]
+        if len(new) == 1
+        else f"{len(new)} implausible results of the run's solves (first: {new[0]})"
+    )
+    _state["implausible_summary"] = summary
+    report_domain_warnings([summary])
+
+
 def run_annotations() -> dict[str, Any]:
     """What every ``--json`` document carries: skisnow version, convergence, warnings."""
     caught = _state.get("caught") or []
     _collect(caught)
+    _report_implausible()
     return {
         "skisnow_version": __version__,
         "converged": _state.get("converged"),
@@ -169,7 +191,7 @@ def main(argv: list[str] | None = None) -> int:
     """Run the CLI; return the exit code (see :data:`EXIT_CODES`; errors: one line on stderr)."""
     args = _renamed(sys.argv[1:] if argv is None else argv)
     _state.update(debug="--debug" in args, converged=None, warnings=[], shown=set(),
-                  unconverged=[])  # fmt: skip
+                  unconverged=[], implausible=None, implausible_summary=None)  # fmt: skip
     from skisnow._checks import _ALLOW
     from skisnow._errors import DomainWarning
 
@@ -178,11 +200,13 @@ def main(argv: list[str] | None = None) -> int:
         warnings.simplefilter("always", DomainWarning)
         _state["caught"] = caught
         try:
-            from skisnow.pipeline import recording_unconverged
+            from skisnow.pipeline import recording_implausible, recording_unconverged
 
-            with recording_unconverged() as log:
+            with recording_unconverged() as log, recording_implausible() as odd:
+                _state["implausible"] = odd
                 code = _run(args)
             report_unconverged(log)  # every solve of this process that did not converge
+            _report_implausible()  # every solve whose result was implausible (exit 4)
         finally:
             _ALLOW.reset(token)
             _state["caught"] = None

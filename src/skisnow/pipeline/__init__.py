@@ -33,7 +33,12 @@ from skisnow.pipeline._profiles import (
     stations,
 )
 from skisnow.pipeline._real import station_masks, zone_station_masks
-from skisnow.pipeline._record import note_unconverged, recording_unconverged
+from skisnow.pipeline._record import (
+    note_implausible,
+    note_unconverged,
+    recording_implausible,
+    recording_unconverged,
+)
 
 _LAZY = dict.fromkeys(
     ("MAP_MASSES", "MAP_MODULI", "STANDARD_SNOWS", "SkiStudy", "standard_cases", "study_ski"),
@@ -55,7 +60,9 @@ __all__ = [
     "Case",
     "SkiStudy",
     "loaded_profiles",
+    "note_implausible",
     "note_unconverged",
+    "recording_implausible",
     "recording_unconverged",
     "resolve_ski",
     "shipped_twin",

@@ -18,8 +18,10 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from skisnow._checks import positive_finite  # the one positive-and-finite rule
 from skisnow._errors import DomainWarning, InputError, UnsupportedLoadError
 from skisnow.constants import STANDARD_GRAVITY
+from skisnow.pipeline._plausible import pressure_notes
 from skisnow.pipeline._profiles import (
     DEFAULT_N_POINTS,
     DEFAULT_PROFILE_SOURCE,
@@ -28,7 +30,7 @@ from skisnow.pipeline._profiles import (
     resolve_ski,
     stations,
 )
-from skisnow.pipeline._record import note_unconverged
+from skisnow.pipeline._record import note_implausible, note_unconverged
 
 if TYPE_CHECKING:
     from skisnow.contact import (
@@ -88,7 +90,9 @@ class Case:
         Whether the contact solver reached its tolerance.
     warnings
         Texts of what the caller should know: the camber network used outside its trained
-        domain (:class:`~skisnow.DomainWarning`), a solve that did not converge.
+        domain (:class:`~skisnow.DomainWarning`), an apparent pressure more than the snow can
+        bear or beyond a small strain (:func:`skisnow.pipeline._plausible.pressure_notes`), a
+        solve that did not converge (always last).
     snow
         The :class:`~skisnow.snow.Snow` when the case was given one (``None`` with a bare
         ``snow_modulus``).
@@ -152,14 +156,8 @@ class Case:
         return self.real.summarize(self.station_masks())
 
 
-def _positive(name: str, value: Any) -> float:
-    from skisnow._checks import positive_finite  # the one positive-and-finite rule
-
-    return positive_finite(name, value)
-
-
 def _check_inputs(mass: Any, load_position: Any, model: str) -> tuple[float, float]:
-    m = _positive("mass [kg]", mass)
+    m = positive_finite("mass [kg]", mass)
     xm = float(load_position)
     if not math.isfinite(xm):
         raise InputError(f"load_position [m]: need a finite value, got {load_position!r}")
@@ -182,13 +180,16 @@ def _given_profile(profile: tuple[ArrayLike, ArrayLike], label: str, mass: float
     return x, h
 
 
-def _noted(case: Case) -> Case:
-    """``case``, its non-convergence recorded for the run (:mod:`skisnow.pipeline._record`)."""
+def _noted(case: Case, implausible: list[str]) -> Case:
+    """``case``, its non-convergence and implausible results recorded (:mod:`._record`)."""
+    label = (
+        f"{case.label} {case.mass:g} kg at {case.load_position * 1e3:g} mm on "
+        f"{case.snow_modulus / 1e6:g} MPa"
+    )
     if not case.converged:
-        note_unconverged(
-            f"{case.label} {case.mass:g} kg at {case.load_position * 1e3:g} mm on "
-            f"{case.snow_modulus / 1e6:g} MPa"
-        )
+        note_unconverged(label)
+    for note in implausible:
+        note_implausible(f"{label}: {note}")
     return case
 
 
@@ -318,7 +319,7 @@ def solve_case(
         if profile is None or width is None:
             raise InputError("solve_case(ski=None) needs a profile=(x, h) and a width [m]")
         s, name = None, label or "profile"
-        ski_width = _positive("width [m]", width)
+        ski_width = positive_finite("width [m]", width)
         kick_zone, source = None, "given"
         x, h = _given_profile(profile, name, m)
     else:
@@ -366,6 +367,9 @@ def solve_case(
     )
     zones = contact_zones(solution, kick_zone=kick_zone)
     real = case_real(solution, media, notes, real_kw)
+    # a derived quantity checked where it is computed (before the solver's note, kept last)
+    implausible = pressure_notes(solution.pressure, zones, modulus=modulus, snow=media.snow or e)
+    notes += implausible
     if not solution.converged:
         notes.append(
             f"contact solver did not converge in {solution.iterations} iterations "
@@ -393,7 +397,8 @@ def solve_case(
             snow=media.snow,
             texture=media.base,
             real=real,
-        )
+        ),
+        implausible,
     )
 
 
@@ -459,9 +464,11 @@ def _flexible_case(
     solution = flex.contact
     notes: list[str] = []
     real = case_real(solution, media, notes, real_kw)
+    zones = contact_zones(solution, kick_zone=s.kick_zone)
+    implausible = pressure_notes(solution.pressure, zones, modulus=modulus, snow=media.snow or e)
+    notes += implausible
     if not flex.converged:
         notes.append(f"flexible solve did not converge: {solution.message}")
-    zones = contact_zones(solution, kick_zone=s.kick_zone)
     height = solution.height if solution.height.ndim == 1 else solution.height[:, 0]
     return _noted(
         Case(
@@ -487,5 +494,6 @@ def _flexible_case(
             snow=media.snow,
             texture=media.base,
             real=real,
-        )
+        ),
+        implausible,
     )
