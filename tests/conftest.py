@@ -53,3 +53,33 @@ def _micro_curve_cache(tmp_path_factory: pytest.TempPathFactory):
         os.environ.pop("SKISNOW_CACHE_DIR", None)
     else:
         os.environ["SKISNOW_CACHE_DIR"] = old
+
+
+def _chromium():
+    import shutil
+
+    chromium = shutil.which("chromium") or shutil.which("chromium-browser")
+    chromedriver = shutil.which("chromedriver")
+    if not (chromium and chromedriver):
+        pytest.skip(
+            "Debian's chromium and chromium-driver are not installed (.ci/run installs them)"
+        )
+    webdriver = pytest.importorskip("selenium.webdriver")
+    from selenium.webdriver.chrome.service import Service
+
+    opts = webdriver.ChromeOptions()
+    opts.binary_location = chromium
+    for arg in ("--headless=new", "--no-sandbox", "--disable-gpu", "--disable-quic",
+                "--no-first-run", "--disable-background-networking", "--disable-sync",
+                "--disable-component-update", "--window-size=420,900"):  # fmt: skip
+        opts.add_argument(arg)  # a phone-sized window
+    opts.set_capability("goog:loggingPrefs", {"browser": "ALL"})
+    return webdriver.Chrome(service=Service(chromedriver), options=opts)
+
+
+@pytest.fixture
+def make_browser():
+    """A function that starts Debian's ``chromium`` through ``chromedriver`` with Selenium
+    (never a downloaded browser or driver; the caller quits it), or skips saying why where
+    either is absent. The browser console is logged (``driver.get_log("browser")``)."""
+    return _chromium

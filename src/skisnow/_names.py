@@ -6,6 +6,10 @@ name, a description) made safe for each place it reaches.
 * :func:`printable`: for a terminal: control characters (``ESC`` of a colour sequence, a
   carriage return that overwrites a line, ``NUL``) and the bidirectional overrides that reorder
   what is shown are written as visible escapes (``\\x1b``, ``\\u202e``);
+* :func:`html_text`: for HTML text and quoted attributes: :func:`printable`, then ``<``, ``>``,
+  ``&`` and quotes as entities; :func:`printable_lines` for texts laid out on lines (a
+  figure's titles) and markup a trusted writer made from such texts (Matplotlib's SVG): its
+  control characters shown, its tabs and line breaks kept;
 * :func:`script_json`: JSON to embed in an HTML ``<script>`` block: ``<``, ``>``, ``&`` and the
   JavaScript line separators as ``\\u`` escapes, so no text can close the block (``</script>``)
   or switch the HTML parser into another state (``<!--``).
@@ -13,12 +17,13 @@ name, a description) made safe for each place it reaches.
 
 from __future__ import annotations
 
+import html
 import json
 import re
 import unicodedata
 from typing import Any
 
-__all__ = ["file_stem", "printable", "script_json"]
+__all__ = ["file_stem", "html_text", "printable", "printable_lines", "script_json"]
 
 _NOT_SAFE = re.compile(r"[^A-Za-z0-9._-]+")
 #: Characters a terminal acts on instead of showing: C0 and C1 controls, DEL, and the Unicode
@@ -48,6 +53,26 @@ def printable(text: Any) -> str:
     """``text`` with every control and bidirectional-override character shown as an escape
     (``\\x1b``, ``\\x00``, ``\\u202e``): what a terminal shows is what the text holds."""
     return _CONTROL.sub(_escape, str(text))
+
+
+def html_text(text: Any) -> str:
+    """``text`` for HTML element content or a quoted attribute: control and bidirectional
+    characters shown as escapes (:func:`printable`: no raw ``NUL`` or ``ESC``, no reordered
+    text), then ``<``, ``>``, ``&``, ``"`` and ``'`` as character references."""
+    return html.escape(printable(text))
+
+
+#: :data:`_CONTROL` less the whitespace markup is laid out with (tab, line feed, return).
+_CONTROL_IN_MARKUP = re.compile(
+    "[\x00-\x08\x0b\x0c\x0e-\x1f\x7f-\x9f\u061c\u200e\u200f\u202a-\u202e\u2066-\u2069]"
+)
+
+
+def printable_lines(text: str) -> str:
+    """``text`` (a figure's title, an SVG figure a trusted writer made) with its control and
+    bidirectional characters shown as escapes, as :func:`printable` shows them; tabs and line
+    breaks (and any markup) kept."""
+    return _CONTROL_IN_MARKUP.sub(_escape, text)
 
 
 _SCRIPT_ESCAPES = {"<": "\\u003c", ">": "\\u003e", "&": "\\u0026", "\u2028": "\\u2028",

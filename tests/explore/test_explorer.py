@@ -10,7 +10,6 @@ that the console stays clean. It skips, saying why, where Chromium or its driver
 from __future__ import annotations
 
 import os
-import shutil
 import time
 from pathlib import Path
 
@@ -135,33 +134,13 @@ def test_page_is_self_contained(dataset) -> None:
     assert "__" not in page.split('id="skisnow-blob"')[0].split("<script")[0]  # all filled in
 
 
-def _driver():
-    chromium = shutil.which("chromium") or shutil.which("chromium-browser")
-    chromedriver = shutil.which("chromedriver")
-    if not (chromium and chromedriver):
-        pytest.skip(
-            "Debian's chromium and chromium-driver are not installed (.ci/run installs them)"
-        )
-    webdriver = pytest.importorskip("selenium.webdriver")
-    from selenium.webdriver.chrome.service import Service
-
-    opts = webdriver.ChromeOptions()
-    opts.binary_location = chromium
-    for arg in ("--headless=new", "--no-sandbox", "--disable-gpu", "--disable-quic",
-                "--no-first-run", "--disable-background-networking", "--disable-sync",
-                "--disable-component-update", "--window-size=420,900"):  # fmt: skip
-        opts.add_argument(arg)  # a phone-sized window
-    opts.set_capability("goog:loggingPrefs", {"browser": "ALL"})
-    return webdriver.Chrome(service=Service(chromedriver), options=opts)
-
-
 @pytest.mark.slow
-def test_page_in_a_real_browser(dataset, tmp_path: Path) -> None:
+def test_page_in_a_real_browser(dataset, tmp_path: Path, make_browser) -> None:
     from selenium.webdriver.common.keys import Keys
 
     page = tmp_path / "explore.html"
     page.write_text(render_explorer(dataset, title="skisnow explorer"), encoding="utf-8")
-    driver = _driver()
+    driver = make_browser()
     try:
         driver.get(page.as_uri())
         for _ in range(100):
@@ -274,7 +253,7 @@ def test_page_names_no_local_folder_and_embeds_the_figures_palette(uneven) -> No
 
 
 @pytest.mark.slow
-def test_page_on_an_uneven_grid_in_a_real_browser(uneven, tmp_path: Path) -> None:
+def test_page_on_an_uneven_grid_in_a_real_browser(uneven, tmp_path: Path, make_browser) -> None:
     """The marker lies on the cell of the selected value, the colour bar's numbers are the
     data's range, the kick-zone marks are drawn, the link restores the settings, the export
     carries the case shown."""
@@ -284,7 +263,7 @@ def test_page_on_an_uneven_grid_in_a_real_browser(uneven, tmp_path: Path) -> Non
 
     page = tmp_path / "explore.html"
     page.write_text(render_explorer(uneven, title="skisnow explorer"), encoding="utf-8")
-    driver = _driver()
+    driver = make_browser()
     try:
         driver.get(page.as_uri())
         _wait_ready(driver)

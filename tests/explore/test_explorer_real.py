@@ -61,13 +61,12 @@ def test_a_page_without_bases_has_no_real_panel(real_dataset) -> None:
 
 
 @pytest.mark.slow
-def test_base_selector_in_a_real_browser(real_dataset, tmp_path: Path) -> None:
+def test_base_selector_in_a_real_browser(real_dataset, tmp_path: Path, make_browser) -> None:
     from selenium.webdriver.support.ui import Select
-    from test_explorer import _driver
 
     page = tmp_path / "explore.html"
     page.write_text(render_explorer(real_dataset, title="real"), encoding="utf-8")
-    driver = _driver()
+    driver = make_browser()
     try:
         driver.get(page.as_uri())
         for _ in range(100):

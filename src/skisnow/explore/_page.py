@@ -5,7 +5,6 @@ a plotting library's bundle would be larger than the data of the default grid.""
 from __future__ import annotations
 
 import base64
-import html
 import re
 from collections.abc import Callable, Sequence
 from importlib import resources
@@ -14,7 +13,7 @@ from typing import Any
 
 import numpy as np
 
-from skisnow._names import script_json
+from skisnow._names import html_text, script_json
 from skisnow.explore._pack import pack
 
 CURVES = ("pressure_kpa", "base_um", "snow_um")
@@ -97,9 +96,9 @@ def render_explorer(ds: Any, *, title: str = "skisnow explorer", subtitle: str =
     page = resources.files("skisnow.explore").joinpath("explorer.html").read_text("utf-8")
     script = resources.files("skisnow.explore").joinpath("explorer.js").read_text("utf-8")
     replacements = {
-        "__TITLE__": html.escape(title),
-        "__SUBTITLE__": html.escape(subtitle),
-        "__NOTE__": html.escape(note),
+        "__TITLE__": html_text(title),
+        "__SUBTITLE__": html_text(subtitle),
+        "__NOTE__": html_text(note),
         "__MASS0__": str(_nearest(grid["mass_kg"], 60.0)),
         "__POS0__": str(_nearest(grid["load_position_mm"], -120.0)),
         "__MOD0__": str(_nearest(grid["snow_modulus_mpa"], 100.0)),

@@ -172,6 +172,20 @@ def _metadata(fmt: str) -> dict[str, Any]:
 SUFFIX_FORMATS: tuple[str, ...] = ("png", "svg", "pdf")
 
 
+def _printable_texts(fig: Figure) -> None:
+    """Every text of ``fig`` (titles, labels, legends: a ski's name from a file) with its
+    control characters drawn as escapes (:func:`skisnow._names.printable_lines`), not as a
+    missing glyph or an invisible reordering."""
+    from matplotlib.text import Text
+
+    from skisnow._names import printable_lines
+
+    for t in fig.findobj(Text):
+        text = t.get_text()
+        if isinstance(text, str) and (shown := printable_lines(text)) != text:
+            t.set_text(shown)
+
+
 def save_figure(
     fig: Figure, path: str | Path, *, formats: Iterable[str] | None = None
 ) -> list[Path]:
@@ -182,6 +196,7 @@ def save_figure(
     SVG: ``stem.png``, ``stem.svg``). Figures carry no creation date, so the same data give
     byte-identical files.
     """
+    _printable_texts(fig)
     path = Path(path)
     suffix = path.suffix.lstrip(".").lower()
     if formats is None and suffix in SUFFIX_FORMATS:
@@ -217,6 +232,7 @@ def figure_svg(fig: Figure, *, narrow: bool = False) -> str:
     """
     import warnings
 
+    _printable_texts(fig)
     buf = io.StringIO()
     size, engine = fig.get_size_inches().copy(), fig.get_layout_engine()
     legends = [(leg, leg._ncols) for ax in fig.axes if (leg := ax.get_legend()) is not None]

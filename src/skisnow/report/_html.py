@@ -3,13 +3,15 @@ external resources (the report opens offline, from a USB stick, in any browser).
 
 from __future__ import annotations
 
-import html
+import dataclasses
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
+
+from skisnow._names import html_text, printable_lines
 
 CSS = """
 body { font-family: -apple-system, "Segoe UI", Helvetica, Arial, sans-serif; margin: 0;
@@ -100,23 +102,25 @@ def _cell(value: Any, floatfmt: str) -> str:
         return "—"
     if isinstance(value, float):
         return format(value, floatfmt)
-    return html.escape(str(value))
+    return html_text(str(value))
 
 
 def _table(t: Table) -> str:
-    head = "".join(f"<th>{html.escape(c)}</th>" for c in t.columns)
+    head = "".join(f"<th>{html_text(c)}</th>" for c in t.columns)
     body = "".join(
         "<tr>" + "".join(f"<td>{_cell(v, t.floatfmt)}</td>" for v in row) + "</tr>"
         for row in t.rows
     )
-    cap = f"<caption>{html.escape(t.caption)}</caption>" if t.caption else ""
+    cap = f"<caption>{html_text(t.caption)}</caption>" if t.caption else ""
     # the table scrolls inside its box on a narrow screen; the page itself never does
     return (f'<div class="scroll"><table>{cap}<thead><tr>{head}</tr></thead><tbody>{body}'
             "</tbody></table></div>")  # fmt: skip
 
 
 def _figure(f: Figure) -> str:
-    cap = f"<figcaption>{html.escape(f.caption)}</figcaption>" if f.caption else ""
+    cap = f"<figcaption>{html_text(f.caption)}</figcaption>" if f.caption else ""
+    # a figure's titles and legends may hold a ski's name: its control characters shown
+    f = dataclasses.replace(f, svg=printable_lines(f.svg), narrow=printable_lines(f.narrow))
     if f.narrow:
         return (f'<figure><div class="fig-wide">{f.svg}</div><div class="fig-narrow">'
                 f"{f.narrow}</div>{cap}</figure>")  # fmt: skip
@@ -127,7 +131,7 @@ def _figure(f: Figure) -> str:
 
 
 def _link(link: Link) -> str:
-    return f'<p><a href="{html.escape(link.href)}">{html.escape(link.text)}</a></p>'
+    return f'<p><a href="{html_text(link.href)}">{html_text(link.text)}</a></p>'
 
 
 def _item(item: Table | Figure | Link) -> str:
@@ -142,16 +146,16 @@ def render_page(title: str, subtitle: str, sections: Sequence[Section], *, foote
         "<!DOCTYPE html>",
         '<html lang="en"><head><meta charset="utf-8">',
         '<meta name="viewport" content="width=device-width, initial-scale=1">',
-        f"<title>{html.escape(title)}</title><style>{CSS}</style></head><body>",
-        f"<header><h1>{html.escape(title)}</h1><p>{html.escape(subtitle)}</p></header><main>",
+        f"<title>{html_text(title)}</title><style>{CSS}</style></head><body>",
+        f"<header><h1>{html_text(title)}</h1><p>{html_text(subtitle)}</p></header><main>",
     ]
     for s in sections:
-        parts.append(f"<section><h2>{html.escape(s.title)}</h2>")
-        parts += [f"<p>{html.escape(p)}</p>" for p in s.paragraphs]
+        parts.append(f"<section><h2>{html_text(s.title)}</h2>")
+        parts += [f"<p>{html_text(p)}</p>" for p in s.paragraphs]
         for item in s.items:
             parts.append(_item(item))
         parts.append("</section>")
     if footer:
-        parts.append(f"<footer>{html.escape(footer)}</footer>")
+        parts.append(f"<footer>{html_text(footer)}</footer>")
     parts.append("</main></body></html>")
     return "\n".join(parts)
