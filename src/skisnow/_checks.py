@@ -75,6 +75,11 @@ def _fmt(v: float) -> str:
     return f"{v:.6g}"
 
 
+def _value(v: float, q: Quantity) -> str:
+    """``v`` with its unit (a count or a factor, whose "unit" is a note in brackets, bare)."""
+    return _fmt(v) if q.unit.startswith("(") else f"{_fmt(v)} {q.unit}"
+
+
 def check_value(
     value: float,
     quantity: str | Quantity,
@@ -112,14 +117,14 @@ def check_value(
         ) from None
     if not q.possible(np.array([v]))[0] or (q.integer and not float(v).is_integer()):
         raise InputError(
-            f"{where}: {_fmt(v)} {q.unit} is not a possible {q.name}; need {q.describe_possible()}"
+            f"{where}: {_value(v, q)} is not a possible {q.name}; need {q.describe_possible()}"
         )
     lo, hi = q.plausible
     if not (lo <= v <= hi) and not (implausible_allowed() if allow is None else allow):
         guess = q.guess_unit(v)
         hint = f"; was it given in {guess}" if guess else ""
         raise ImplausibleValueError(
-            f"{where}: {_fmt(v)} {q.unit} is implausible for a {q.name} of a ski (expected "
+            f"{where}: {_value(v, q)} is an implausible {q.name} (plausible: "
             f"{q.describe_plausible()}){hint}. If you really mean it, pass {OVERRIDE_HINT}."
         )
     return v
@@ -149,7 +154,7 @@ def check_array(
     if bad.size:
         i = int(bad[0])
         raise impossible(
-            f"{where}, {label(i)}: {_fmt(v[i])} {q.unit} is not a possible {q.name}; need "
+            f"{where}, {label(i)}: {_value(v[i], q)} is not a possible {q.name}; need "
             f"{q.describe_possible()}"
         )
     if implausible_allowed() if allow is None else allow:
@@ -161,9 +166,8 @@ def check_array(
         guess = q.guess_unit(float(v[i]))
         hint = f"; was the column given in {guess}" if guess else ""
         raise ImplausibleValueError(
-            f"{where}, {label(i)}: {_fmt(v[i])} {q.unit} is implausible for a {q.name} of a ski "
-            f"(expected {q.describe_plausible()}){hint}. If you really mean it, pass "
-            f"{OVERRIDE_HINT}."
+            f"{where}, {label(i)}: {_value(v[i], q)} is an implausible {q.name} (plausible: "
+            f"{q.describe_plausible()}){hint}. If you really mean it, pass {OVERRIDE_HINT}."
         )
     if check_span and q.min_span > 0 and v.size >= 2:
         span = float(v.max() - v.min())
@@ -172,8 +176,8 @@ def check_array(
             hint = f"; the values look like {guess}, not {q.unit}" if guess else ""
             raise ImplausibleValueError(
                 f"{where}: the {q.name} spans only {_fmt(span)} {q.unit} over {v.size} rows "
-                f"(a ski's spans at least {q.min_span:g} {q.unit}){hint}. If you really mean "
-                f"it, pass {OVERRIDE_HINT}."
+                f"(on a ski it spans at least {q.min_span:g} {q.unit}){hint}. If you really "
+                f"mean it, pass {OVERRIDE_HINT}."
             )
     return v
 

@@ -190,8 +190,8 @@ QUANTITIES: dict[str, Quantity] = {
         typical=10.0,
     ),
     "grid_points": Quantity(
-        name="grid points", unit="(count)", low=16.0, plausible=(16.0, 2.0**21), typical=4096.0,
-        integer=True,
+        name="number of grid points", unit="(count)", low=16.0, plausible=(16.0, 2.0**21),
+        typical=4096.0, integer=True,
     ),
     "sliding_speed": Quantity(
         name="sliding speed", unit="m/s", low=0.0, low_open=True, plausible=(0.05, 40.0),
@@ -211,7 +211,7 @@ QUANTITIES: dict[str, Quantity] = {
         plausible=(0.1, 100.0), alternatives=(("Pa·s", 1e3, 0.0),), typical=1.8,
     ),
     "cells_across": Quantity(
-        name="cells across the width", unit="(count)", low=1.0, plausible=(1.0, 1024.0),
+        name="number of cells across the width", unit="(count)", low=1.0, plausible=(1.0, 1024.0),
         typical=16.0,
         integer=True,
     ),
@@ -280,11 +280,11 @@ QUANTITIES: dict[str, Quantity] = {
         plausible=(0.0, 1024.0), integer=True, typical=2.0,
     ),
     "display_stations": Quantity(
-        name="display stations along the ski", unit="(count)", low=16.0,
+        name="number of display stations along the ski", unit="(count)", low=16.0,
         plausible=(16.0, 65536.0), integer=True, typical=512.0,
     ),
     "frames": Quantity(
-        name="frames over a load cycle", unit="(count)", low=2.0, plausible=(2.0, 1.0e5),
+        name="number of frames over a load cycle", unit="(count)", low=2.0, plausible=(2.0, 1.0e5),
         integer=True, typical=100.0,
     ),
     "seed": Quantity(
@@ -292,7 +292,7 @@ QUANTITIES: dict[str, Quantity] = {
         plausible=(0.0, 2.0**63 - 1), integer=True, typical=0.0,
     ),
     "spline_coefficients": Quantity(
-        name="spline coefficients", unit="(count)", low=2.0, plausible=(2.0, 4000.0),
+        name="number of spline coefficients", unit="(count)", low=2.0, plausible=(2.0, 4000.0),
         integer=True, typical=50.0,
     ),
     "evaluations": Quantity(
@@ -300,12 +300,12 @@ QUANTITIES: dict[str, Quantity] = {
         typical=60.0,
     ),
     "optimizer_steps": Quantity(
-        name="optimiser steps", unit="(count)", low=0.0, plausible=(0.0, 1.0e6), integer=True,
-        typical=200.0,
+        name="number of optimiser steps", unit="(count)", low=0.0, plausible=(0.0, 1.0e6),
+        integer=True, typical=200.0,
     ),
     "ensemble_members": Quantity(
-        name="ensemble members", unit="(count)", low=1.0, plausible=(1.0, 100.0), integer=True,
-        typical=1.0,
+        name="number of ensemble members", unit="(count)", low=1.0, plausible=(1.0, 100.0),
+        integer=True, typical=1.0,
     ),
     "layer_width": Quantity(
         name="layer width of the camber network", unit="(count)", low=1.0,
@@ -316,7 +316,7 @@ QUANTITIES: dict[str, Quantity] = {
         integer=True, typical=1.0,
     ),
     "population": Quantity(
-        name="population or generations of the optimiser", unit="(count)", low=1.0,
+        name="population size or number of generations of the optimiser", unit="(count)", low=1.0,
         plausible=(1.0, 1.0e5), integer=True, typical=20.0,
     ),
     "regularisation": Quantity(

@@ -27,6 +27,7 @@ JSON, name injection) are in ``corpus_doors.py``.
 from __future__ import annotations
 
 import contextlib
+import functools
 import io
 import json
 import os
@@ -91,6 +92,7 @@ class Outcome:
     says_valid: bool = False
     seconds: float = 0.0
     warnings: list[str] = field(default_factory=list)
+    cpu: float = 0.0  # CPU seconds of this process (time.process_time): load-independent
 
 
 # --------------------------------------------------------------------------------------------
@@ -107,13 +109,21 @@ class _Payload:
         return (Path.write_text, (Path(self.sentinel), "pickle payload executed"))
 
 
-def _bench_table(d: Path) -> tuple[Path, list[str]]:
-    """A valid bench CSV (skate, 3 masses at one position, 20 mm step) and its lines."""
-    from skisnow.bench import run_bench, write_bench
+@functools.cache
+def bench_data():
+    """The virtual bench of the skate (3 masses at one position, 20 mm step), computed once for
+    every group that needs a valid bench file."""
+    from skisnow.bench import run_bench
 
-    data = run_bench("skate", masses=[20.0, 60.0, 100.0], load_positions=[-0.12], dx=0.02)
+    return run_bench("skate", masses=[20.0, 60.0, 100.0], load_positions=[-0.12], dx=0.02)
+
+
+def _bench_table(d: Path) -> tuple[Path, list[str]]:
+    """A valid bench CSV (:func:`bench_data`) and its lines."""
+    from skisnow.bench import write_bench
+
     path = d / "bench_ok.csv"
-    write_bench(data, path)
+    write_bench(bench_data(), path)
     return path, path.read_text().splitlines()
 
 
@@ -754,7 +764,7 @@ def run_case(case: Case, timeout: float | None = None) -> Outcome:
         signal.setitimer(signal.ITIMER_REAL, timeout)
 
     out, err = io.StringIO(), io.StringIO()
-    t0 = time.perf_counter()
+    t0, c0 = time.perf_counter(), time.process_time()
     escaped = None
     saved = {k: os.environ.get(k) for k in case.env}
     os.environ.update(case.env)
@@ -779,7 +789,7 @@ def run_case(case: Case, timeout: float | None = None) -> Outcome:
                     os.environ.pop(k, None)
                 else:
                     os.environ[k] = v
-    seconds = time.perf_counter() - t0
+    seconds, cpu = time.perf_counter() - t0, time.process_time() - c0
     message = err.getvalue().strip()
     if escaped is not None:
         message = f"{type(escaped).__name__}: {escaped}"
@@ -813,6 +823,7 @@ def run_case(case: Case, timeout: float | None = None) -> Outcome:
         says_valid=bool(VALID_WORDS.search(message)) and kind == "clean",
         seconds=seconds,
         warnings=[str(w.message) for w in caught],
+        cpu=cpu,
     )
 
 
@@ -864,7 +875,16 @@ def main(argv: list[str] | None = None) -> int:
                 f"{o.kind:11s} {o.code:4d} {o.seconds:6.2f}s {o.case.id}: {o.message[:300]}{flag}"
             )
     print(json.dumps(tally(outcomes), indent=1))
-    print(f"fixtures {t1 - t0:.1f} s, cases {t2 - t1:.1f} s")
+    print(f"fixtures {t1 - t0:.1f} s, cases {t2 - t1:.1f} s, "
+          f"CPU {sum(o.cpu for o in outcomes):.1f} s")  # fmt: skip
+    if "--slowest" in args:  # the cases that cost most CPU, and the CPU of each group
+        for o in sorted(outcomes, key=lambda o: -o.cpu)[: int(args[args.index("--slowest") + 1])]:
+            print(f"  {o.cpu:6.2f} s CPU  {o.case.id}")
+        per_group = Counter()
+        for o in outcomes:
+            per_group[o.case.group or o.case.builder] += o.cpu
+        for group, cpu in per_group.most_common():
+            print(f"  {group:22s} {cpu:6.1f} s CPU")
     by_group = Counter((o.case.group, o.kind) for o in outcomes)
     for (group, kind), n in sorted(by_group.items()):
         print(f"  {group:18s} {kind:11s} {n}")

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
 
@@ -26,7 +28,7 @@ def test_implausible_values_name_the_probable_unit_and_the_override() -> None:
         check_value(1e8, "snow_modulus", where="--snow-modulus-mpa")
     with pytest.raises(ImplausibleValueError, match="given in K"):
         check_value(270.0, "temperature", where="--temperature-c")
-    with pytest.raises(ImplausibleValueError, match="implausible for a ski length"):
+    with pytest.raises(ImplausibleValueError, match="20000 mm is an implausible ski length"):
         check_value(20.0e3, "ski_length", where="length_mm")  # a 20 m ski
     with pytest.raises(ImplausibleValueError, match="given in m"):
         check_value(1.9, "ski_length", where="length_mm")
@@ -41,7 +43,7 @@ def test_heights_in_metres_in_a_millimetre_column() -> None:
     with pytest.raises(ImplausibleValueError, match="look like m, not mm"):
         check_array(h_m, "camber_height", where="f.csv, column 'height_mm'")
     assert check_array(h_m * 1e3, "camber_height", where="f.csv").shape == x.shape
-    with pytest.raises(ImplausibleValueError, match="line 1: -30 mm is implausible"):
+    with pytest.raises(ImplausibleValueError, match="line 1: -30 mm is an implausible"):
         check_array(-h_m * 1e3, "camber_height", where="f", row_label=lambda i: f"line {i + 1}")
 
 
@@ -63,3 +65,25 @@ def test_atomic_write_keeps_the_old_file_when_the_writer_fails(tmp_path) -> None
         assert tmp.suffix == ".npy"
         np.save(tmp, np.arange(3))
     assert np.load(tmp_path / "b.npy").tolist() == [0, 1, 2]
+
+
+def test_messages_read_as_sentences() -> None:
+    """Every quantity's refusals read "VALUE [UNIT] is an implausible NAME (plausible: ...)" and
+    "VALUE is not a possible NAME": a count's name says what is counted ("number of frames",
+    never "a frames"), and a count or factor shows no bracketed pseudo-unit after its value."""
+    from skisnow._quantities import QUANTITIES
+
+    for key, q in QUANTITIES.items():
+        hi = q.plausible[1]
+        if hi < q.high and math.isfinite(hi):
+            v = hi * 2.0 + 1.0 if q.high == math.inf else 0.5 * (hi + q.high)
+            v = float(math.floor(hi) + 1) if q.integer else v
+            with pytest.raises(ImplausibleValueError) as exc:
+                check_value(v, key, where="--x")
+            text = str(exc.value)
+            shown = f"{v:.6g}" if q.unit.startswith("(") else f"{v:.6g} {q.unit}"
+            assert text.startswith(f"--x: {shown} is an implausible {q.name} (plausible: ")
+        if q.integer:
+            countable = ("number of", "random seed", "evaluation limit", "stride",
+                         "population size", "layer width")  # fmt: skip
+            assert q.name.startswith(countable), q.name

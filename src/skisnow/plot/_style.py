@@ -173,14 +173,21 @@ SUFFIX_FORMATS: tuple[str, ...] = ("png", "svg", "pdf")
 
 
 def _printable_texts(fig: Figure) -> None:
-    """Every text of ``fig`` (titles, labels, legends: a ski's name from a file) with its
-    control characters drawn as escapes (:func:`skisnow._names.printable_lines`), not as a
-    missing glyph or an invisible reordering."""
-    from matplotlib.text import Text
-
+    """The texts of ``fig`` a name from a file can reach (titles, axis labels, legends, free
+    texts) with their control characters drawn as escapes
+    (:func:`skisnow._names.printable_lines`), not as missing glyphs or an invisible
+    reordering. Tick labels are made at draw time from their formatter: skisnow's are numbers."""
     from skisnow._names import printable_lines
 
-    for t in fig.findobj(Text):
+    texts = [*fig.texts, *(t for leg in fig.legends for t in leg.texts)]
+    if fig._suptitle is not None:
+        texts.append(fig._suptitle)
+    for ax in fig.axes:
+        texts += [ax.title, ax._left_title, ax._right_title, ax.xaxis.label, ax.yaxis.label,
+                  *ax.texts]  # fmt: skip
+        if (leg := ax.get_legend()) is not None:
+            texts += leg.texts
+    for t in texts:
         text = t.get_text()
         if isinstance(text, str) and (shown := printable_lines(text)) != text:
             t.set_text(shown)
@@ -222,13 +229,15 @@ PHONE_FIGURE_PX: float = 390.0
 MIN_TEXT_PX: float = 12.0
 
 
-def figure_svg(fig: Figure, *, narrow: bool = False) -> str:
+def figure_svg(fig: Figure, *, narrow: bool = False, smallest_pt: float | None = None) -> str:
     """The figure as an SVG document string (for inline embedding in HTML).
 
     ``narrow``: the same figure redrawn for a phone (constrained layout, text at its size in
     points), as wide as lets its smallest text show at :data:`MIN_TEXT_PX` on
     :data:`PHONE_FIGURE_PX` (8 pt: 3.6 in) and taller by the room the text needs; ``""`` when
     its panels do not fit that width (several side by side). The figure is left as it was.
+    ``smallest_pt``: :func:`smallest_text_pt` of the figure, if the caller has it (it costs a
+    draw).
     """
     import warnings
 
@@ -238,7 +247,8 @@ def figure_svg(fig: Figure, *, narrow: bool = False) -> str:
     legends = [(leg, leg._ncols) for ax in fig.axes if (leg := ax.get_legend()) is not None]
     if narrow:
         w, h = size
-        width = PHONE_FIGURE_PX * smallest_text_pt(fig) / (MIN_TEXT_PX * 72.0)
+        pt = smallest_text_pt(fig) if smallest_pt is None else smallest_pt
+        width = PHONE_FIGURE_PX * pt / (MIN_TEXT_PX * 72.0)
         fig.set_size_inches(width, h * (1.0 + 0.6 * max(0.0, w / width - 1.0)))
         moved = []
         for ax in fig.axes:  # a legend under its axes: a figure legend under the figure
@@ -305,6 +315,7 @@ def smallest_text_pt(fig: Figure) -> float:
     """The smallest font size [pt] of the visible texts of a figure (ticks, labels, legends)."""
     from matplotlib.text import Text
 
+    _printable_texts(fig)
     with style():
         fig.draw_without_rendering()  # tick labels exist only once drawn
     sizes = [t.get_fontsize() for t in fig.findobj(Text) if t.get_visible() and t.get_text()]

@@ -69,9 +69,10 @@ class Figure:
         for its smallest text to show at 12 px."""
         from skisnow.plot import figure_svg, smallest_text_pt
 
-        narrow = figure_svg(fig, narrow=True)
+        pt = smallest_text_pt(fig)  # one draw, for both drawings
+        narrow = figure_svg(fig, narrow=True, smallest_pt=pt)
         wide_px = float(fig.get_size_inches()[0]) * 72.0  # the SVG's width in pt
-        min_px = 0 if narrow else int(np.ceil(12.0 * wide_px / smallest_text_pt(fig)))
+        min_px = 0 if narrow else int(np.ceil(12.0 * wide_px / pt))
         return cls(figure_svg(fig), caption, narrow, min_px)
 
 

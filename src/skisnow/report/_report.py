@@ -187,6 +187,10 @@ def _maps_section(study: Any) -> Section:
     ds, ski = study.maps, study.ski.name
     positions = ds["load_position_mm"].values
     pos_mm = float(positions[np.argmin(np.abs(positions - study.load_position * 1e3))])
+    if ds.sizes["mass_kg"] < 2:  # a curve over the load of one point: empty axes
+        return Section("Maps over load and snow", (
+            f"The maps run over the load: one mass ({float(ds['mass_kg'].values[0]):g} kg) "
+            "draws none; give --mass-kg two masses or more (default 5:130:5).",), ())  # fmt: skip
     figures = sweep_figures(ds, skis=[ski], load_positions_mm=[pos_mm], kinds=tuple(_MAP_CAPTIONS))
     items = [
         Figure.of(fig, _MAP_CAPTIONS[kind])
