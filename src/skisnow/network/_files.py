@@ -253,7 +253,7 @@ def _check_numbers(scaling: Any, domain: Any, where: str) -> None:
         if lo * to_field < p_lo or hi * to_field > p_hi or (quantity == "mass" and lo <= 0):
             raise FileFormatError(
                 f"{where}.json: domain.{prefix}_min/max = {lo!r}/{hi!r} lies outside the "
-                f"plausible range of the {q.name} ({q.describe_plausible()})"
+                f"plausible range of the {q.name}; need both within {q.describe_plausible()}"
             )
 
 
