@@ -84,7 +84,8 @@ class Quantity:
 
     def describe_plausible(self) -> str:
         lo, hi = self.plausible
-        return f"{lo:g} to {hi:g} {self.unit}"
+        unit = "" if self.unit.startswith("(") else f" {self.unit}"  # a count: no "(count)"
+        return f"{lo:g} to {hi:g}{unit}"
 
     def guess_unit(self, value: float, *, span: bool = False) -> str | None:
         """The alternative unit in which ``value`` would be plausible, if exactly one is."""
