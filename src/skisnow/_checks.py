@@ -122,10 +122,10 @@ def check_value(
     lo, hi = q.plausible
     if not (lo <= v <= hi) and not (implausible_allowed() if allow is None else allow):
         guess = q.guess_unit(v)
-        hint = f"; was it given in {guess}" if guess else ""
+        hint = f"; was it given in {guess}?" if guess else ""
         raise ImplausibleValueError(
             f"{where}: {_value(v, q)} is an implausible {q.name} (plausible: "
-            f"{q.describe_plausible()}){hint}. If you really mean it, pass {OVERRIDE_HINT}."
+            f"{q.describe_plausible()}{hint}). If you really mean it, pass {OVERRIDE_HINT}."
         )
     return v
 
@@ -164,10 +164,10 @@ def check_array(
     if out.size:
         i = int(out[0])
         guess = q.guess_unit(float(v[i]))
-        hint = f"; was the column given in {guess}" if guess else ""
+        hint = f"; was the column given in {guess}?" if guess else ""
         raise ImplausibleValueError(
             f"{where}, {label(i)}: {_value(v[i], q)} is an implausible {q.name} (plausible: "
-            f"{q.describe_plausible()}){hint}. If you really mean it, pass {OVERRIDE_HINT}."
+            f"{q.describe_plausible()}{hint}). If you really mean it, pass {OVERRIDE_HINT}."
         )
     if check_span and q.min_span > 0 and v.size >= 2:
         span = float(v.max() - v.min())
@@ -176,7 +176,7 @@ def check_array(
             hint = f"; the values look like {guess}, not {q.unit}" if guess else ""
             raise ImplausibleValueError(
                 f"{where}: the {q.name} spans only {_fmt(span)} {q.unit} over {v.size} rows "
-                f"(on a ski it spans at least {q.min_span:g} {q.unit}){hint}. If you really "
+                f"(on a ski it spans at least {q.min_span:g} {q.unit}{hint}). If you really "
                 f"mean it, pass {OVERRIDE_HINT}."
             )
     return v

@@ -80,7 +80,8 @@ class Quantity:
         hi = "" if self.high == math.inf else f"{'<' if self.high_open else '<='} {self.high:g}"
         bounds = " and ".join(b for b in (lo, hi) if b)
         what = "a whole number" if self.integer else "a finite number"
-        return f"{what} {bounds} {self.unit}".replace("  ", " ").strip()
+        unit = "" if self.unit in ("(count)", "(integer)") else self.unit  # "whole" says it
+        return f"{what} {bounds} {unit}".replace("  ", " ").strip()
 
     def describe_plausible(self) -> str:
         lo, hi = self.plausible
@@ -179,7 +180,7 @@ QUANTITIES: dict[str, Quantity] = {
         plausible=(0.005, 200.0), alternatives=(_M, _UM_IN_MM), typical=1.0,
     ),
     "noise": Quantity(
-        name="height noise (standard deviation)", unit="mm", low=0.0, plausible=(0.0, 5.0),
+        name="standard deviation of the height noise", unit="mm", low=0.0, plausible=(0.0, 5.0),
         alternatives=(_UM_IN_MM,), typical=0.01,
     ),
     "alpha": Quantity(
@@ -329,7 +330,7 @@ QUANTITIES: dict[str, Quantity] = {
         plausible=(0.0, 1.0e6), typical=1.0,
     ),
     "noise_um": Quantity(
-        name="height noise (standard deviation)", unit="µm", low=0.0, plausible=(0.0, 5000.0),
+        name="standard deviation of the height noise", unit="µm", low=0.0, plausible=(0.0, 5000.0),
         alternatives=(("mm", 1e3, 0.0), ("m", 1e6, 0.0)), typical=10.0,
     ),
     "percent": Quantity(

@@ -125,7 +125,7 @@ def test_bad_profile_files(capsys, tmp_path: Path) -> None:
     bad = tmp_path / "bad.csv"
     bad.write_text("x_mm,height\n1,2\n")
     assert main([*BASE, "--profile", str(bad)]) == 2
-    assert "missing column(s) height_mm" in capsys.readouterr().err
+    assert "missing column height_mm" in capsys.readouterr().err
     rows = "\n".join(f"{i},{0.1 if i != 5 else 'abc'}" for i in range(10))
     bad.write_text("x_mm,height_mm\n" + rows + "\n")
     assert main([*BASE, "--profile", str(bad)]) == 2

@@ -138,7 +138,7 @@ def test_kick_contact_summary_counts_frame_intervals() -> None:
 
 
 def test_a_position_off_the_ski_is_refused() -> None:
-    with pytest.raises(InputError, match=r"sample 1: -1500 mm is implausible"):
+    with pytest.raises(InputError, match=r"sample 1: -1500 mm is an implausible"):
         LoadHistory(time=[0, 0.1], force=[500, 500], load_position=[-0.12, -1.5])
     from skisnow import allow_implausible
 

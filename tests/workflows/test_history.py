@@ -86,7 +86,7 @@ def test_columns_are_checked(tmp_path: Path) -> None:
 
 def test_position_off_the_ski_names_line(tmp_path: Path) -> None:
     path = write(tmp_path, GOOD.replace("0.03,650,-100", "0.03,650,-1500"))
-    with pytest.raises(InputError, match=r"'load_position_mm', line 7: -1500 mm is implausible"):
+    with pytest.raises(InputError, match=r"'load_position_mm', line 7: -1500 mm is an implausible"):
         read_load_history(path)
     from skisnow import allow_implausible
 

@@ -224,7 +224,8 @@ def main(argv: list[str] | None = None) -> int:
     if _state["converged"] is False:
         bad = _state["unconverged"]
         which = (
-            f"{len(bad)} solve(s) did not converge (first: {printable('; '.join(bad[:3]))})"
+            f"{len(bad)} solve{'s' * (len(bad) != 1)} did not converge (first: "
+            f"{printable('; '.join(bad[:3]))})"
             if bad
             else "the solver did not converge"
         )

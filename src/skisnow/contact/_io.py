@@ -53,7 +53,8 @@ def _read_columns(path: Path, columns: tuple[str, ...], what: str):
     missing = [c for c in columns if c not in table.columns]
     if missing:
         raise FileFormatError(
-            f"{path}: missing column(s) {', '.join(missing)}; a {what} file needs columns "
+            f"{path}: missing column{'s' * (len(missing) != 1)} {', '.join(missing)}; a {what} "
+            "file needs columns "
             f"{header} (found: {', '.join(map(str, table.columns)) or 'none'})"
         )
     values = {}

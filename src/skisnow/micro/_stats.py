@@ -135,11 +135,14 @@ def read_rank_table(path: str | Path, *, alpha: float = 0.05) -> RankTable:
     missing = [c for c in ("structure", "glide_time_s") if c not in df.columns]
     if missing:
         raise FileFormatError(
-            f"{path}: missing column(s) {missing}; need 'structure', 'glide_time_s' and "
+            f"{path}: missing column{'s' * (len(missing) != 1)} {missing}; need 'structure', "
+            "'glide_time_s' and "
             f"descriptor columns; found {list(df.columns)}"
         )
     if len(df) < 3:
-        raise FileFormatError(f"{path}: need at least 3 structures, found {len(df)} row(s)")
+        raise FileFormatError(
+            f"{path}: need at least 3 structures, found {len(df)} row{'s' * (len(df) != 1)}"
+        )
     descriptors: dict[str, np.ndarray] = {}
     for col in df.columns:
         if col in ("structure", "glide_time_s"):

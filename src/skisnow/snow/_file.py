@@ -74,7 +74,8 @@ def read_snow(path: str | Path) -> Snow:
     unknown = sorted(set(doc) - set(SNOW_FILE_KEYS))
     if unknown:
         raise FileFormatError(
-            f"{where}: unknown key(s) {unknown}; valid: {', '.join(SNOW_FILE_KEYS)}"
+            f"{where}: unknown key{'s' * (len(unknown) != 1)} {unknown}; valid: "
+            f"{', '.join(SNOW_FILE_KEYS)}"
         )
     if doc.get("format", "skisnow-snow") != "skisnow-snow":
         raise FileFormatError(f"{where}: 'format' must be 'skisnow-snow', got {doc['format']!r}")
@@ -90,7 +91,7 @@ def snow_from_record(doc: dict[str, Any], *, where: str = "(snow record)") -> Sn
     """A :class:`Snow` from a snow-file document (:func:`snow_record`'s inverse)."""
     unknown = sorted(set(doc) - set(SNOW_FILE_KEYS))
     if unknown:
-        raise FileFormatError(f"{where}: unknown key(s) {unknown}")
+        raise FileFormatError(f"{where}: unknown key{'s' * (len(unknown) != 1)} {unknown}")
     return _from_doc(doc, where, default_name="snow")
 
 

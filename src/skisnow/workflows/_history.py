@@ -255,7 +255,8 @@ def read_load_history(path: str | Path, *, max_gap_factor: float = MAX_GAP_FACTO
     missing = [c for c in ("t_s", "load_position_mm") if c not in cols]
     if missing:
         raise FileFormatError(
-            f"{path}: missing column(s) {', '.join(missing)}; a load history has the columns "
+            f"{path}: missing column{'s' * (len(missing) != 1)} {', '.join(missing)}; a load "
+            "history has the columns "
             f"t_s, force_n or mass_kg, load_position_mm (header has {', '.join(cols)})"
         )
     values = {}
