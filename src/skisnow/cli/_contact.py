@@ -109,6 +109,8 @@ def contact(
             help="Elastic modulus of the snow in MPa (or --snow; with --snow it overrides).",
         ),
     ] = None,
+    # the snow, base and friction options, defined once in cli/_media.py; Typer needs them
+    # listed in each command's own signature
     snow: SnowOption = None,
     snow_temperature_c: SnowTemperatureOption = None,
     base: BaseOption = None,

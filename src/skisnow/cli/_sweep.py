@@ -72,6 +72,8 @@ def sweep(
     mass_kg: MassGridOption = "5:130:1",
     load_position_mm: LoadPositionGridOption = "-120",
     snow_modulus_mpa: SnowModulusGridOption = None,  # type: ignore[assignment]
+    # the snow, base and friction options, defined once in cli/_media.py; Typer needs them
+    # listed in each command's own signature
     snow: SnowOption = None,
     snow_temperature_c: SnowTemperatureOption = None,
     base: BaseOption = None,
@@ -304,6 +306,8 @@ def report(
             "--snow's modulus, else 100).",
         ),
     ] = None,
+    # the snow, base and friction options, defined once in cli/_media.py; Typer needs them
+    # listed in each command's own signature
     snow: SnowOption = None,
     snow_temperature_c: SnowTemperatureOption = None,
     base: BaseOption = None,

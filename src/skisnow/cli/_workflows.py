@@ -148,6 +148,8 @@ def compare(
     skis: Annotated[list[str], typer.Argument(help="Skis: shipped names, ski files, bench files.")],
     body_mass_kg: float = _BODY,
     snow_modulus_mpa: float | None = _SNOW,
+    # the snow, base and friction options, defined once in cli/_media.py; Typer needs them
+    # listed in each command's own signature
     snow: SnowOption = None,
     snow_temperature_c: SnowTemperatureOption = None,
     base: Annotated[
@@ -383,6 +385,8 @@ def pairs(
     skis: Annotated[list[str], typer.Argument(help="Skis: shipped names, ski files, bench files.")],
     body_mass_kg: float = _BODY,
     snow_modulus_mpa: float | None = _SNOW,
+    # the snow, base and friction options, defined once in cli/_media.py; Typer needs them
+    # listed in each command's own signature
     snow: SnowOption = None,
     load_position_mm: float = _POS,
     points: int = _POINTS,

@@ -104,6 +104,8 @@ def summary_record(ds: Any) -> dict[str, Any]:
 def cycle(
     ski: Annotated[str, typer.Argument(help="A shipped ski name, a ski file or a bench file.")],
     snow_modulus_mpa: float | None = _SNOW,
+    # the snow, base and friction options, defined once in cli/_media.py; Typer needs them
+    # listed in each command's own signature
     snow: SnowOption = None,
     snow_temperature_c: SnowTemperatureOption = None,
     base: BaseOption = None,

@@ -34,6 +34,7 @@ from skisnow.contact._polonsky_keer import (
     polonsky_keer,
     restore,
 )
+from skisnow.contact._window import rigid_body_gap
 
 __all__ = ["CANDIDATE_MIN_CELLS", "DENSE_MAX", "solve_on_candidates"]
 
@@ -182,14 +183,7 @@ def solve_on_candidates(
     u = conv(p)
     n_conv = 1
 
-    def gap(p: np.ndarray, u: np.ndarray, a: float | None = None, b: float = 0.0) -> np.ndarray:
-        g = hh + u
-        if a is None:
-            a, b = 0.0, 0.0
-            sel = p > 0
-            if constrained and sel.any():
-                a, b = plane_fit(g, xi, sel) if moment else (float(g[sel].mean()), 0.0)
-        return g - a - b * xi
+    gap = functools.partial(rigid_body_gap, hh, xi, moment=moment, constrained=constrained)
 
     def whole(res: PolonskyKeerResult, **changes: object) -> PolonskyKeerResult:
         """The candidates' result on the whole grid, with the cost and history so far."""

@@ -79,6 +79,9 @@ class Region:
         return asdict(self)
 
 
+# The metric fields of Patch repeat those of Region (and of the paper's Zone in _zones.py) on
+# purpose: each is a flat frozen record whose field order is its JSON and CSV column order;
+# a shared base class would put the common fields first and change those columns.
 @dataclass(frozen=True, kw_only=True)
 class Patch:
     """One contiguous contact patch (SI units): extent (outer cell edges), metrics, regions."""

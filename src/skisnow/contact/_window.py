@@ -34,6 +34,30 @@ _RIM = 4
 _MAX_FRACTION = 0.5
 
 
+def rigid_body_gap(
+    h: np.ndarray,
+    arm: np.ndarray,
+    p: np.ndarray,
+    u: np.ndarray,
+    a: float | None = None,
+    b: float = 0.0,
+    *,
+    moment: bool,
+    constrained: bool,
+) -> np.ndarray:
+    """The gap h + u − (a + b·arm) of a rigid body that translates (a) and, under moment
+    control, rotates (b); without a and b given, the least-squares plane of h + u over the cells
+    in contact (p > 0), as the Polonsky–Keer iteration closes it (Kalliorinne et al. 2023,
+    eq. 3). Shared by the candidate-set solvers of the strip and of the surface."""
+    g = h + u
+    if a is None:
+        a, b = 0.0, 0.0
+        sel = p > 0
+        if constrained and sel.any():
+            a, b = plane_fit(g, arm, sel) if moment else (float(g[sel].mean()), 0.0)
+    return g - a - b * arm
+
+
 @functools.lru_cache(maxsize=8)
 def _window_operator(conv: Convolution, shape: tuple[int, int]) -> Convolution:
     """The operator of ``conv`` on a window of ``shape`` cells: the same kernel, centred."""
@@ -72,14 +96,7 @@ def solve_on_window(
     iterations, history = 0, []
     fp = pr.footprint
 
-    def gap(p: np.ndarray, u: np.ndarray, a: float | None = None, b: float = 0.0) -> np.ndarray:
-        g = hh + u
-        if a is None:
-            a, b = 0.0, 0.0
-            sel = p > 0
-            if constrained and sel.any():
-                a, b = plane_fit(g, pr.arm, sel) if moment else (float(g[sel].mean()), 0.0)
-        return g - a - b * pr.arm
+    gap = functools.partial(rigid_body_gap, hh, pr.arm, moment=moment, constrained=constrained)
 
     g = gap(p, u)
     scale = float(np.abs(u).max()) + 1e-300
