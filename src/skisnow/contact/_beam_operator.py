@@ -87,6 +87,10 @@ class CantileverCompliance:
     rear: _Half = field(repr=False)
     front: _Half = field(repr=False)
     diagonal: np.ndarray = field(repr=False)
+    #: (side, d, u, v) at every station: the half (0 rear, 1 front), the distance from the clamp
+    #: and the generators of :meth:`block` (G_ij = u_i d_j + v_i within a half, i the station
+    #: nearer the clamp), for the compiled assembly of dense blocks
+    generators: tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray] = field(repr=False)
 
     def __call__(self, force: np.ndarray) -> np.ndarray:
         """Upward deflection [m] of every station under upward nodal forces ``force`` [N]."""
@@ -229,14 +233,22 @@ def cantilever_compliance(
         halves.append(_half(index, d, ei))
     rear, front = halves
     diag = np.zeros(xs.size)
-    for half in halves:
+    side = np.zeros(xs.size, dtype=np.int8)
+    dd, uu, vv = np.zeros(xs.size), np.zeros(xs.size), np.zeros(xs.size)
+    for k, half in enumerate(halves):
         if half.index.size:
             # K_ii = Σ_k c_k (d_i − t_k)₊²
             c, t, d = half.c, half.t, half.d
+            ct = c * t
             s0 = np.cumsum(c)[:-1]
-            s1 = np.cumsum(c * t)[:-1]
-            s2 = np.cumsum(c * t * t)[:-1]
+            s1 = np.cumsum(ct)[:-1]
+            s2 = np.cumsum(ct * t)[:-1]
             diag[half.index] = d * d * s0 - 2 * d * s1 + s2
-    for arr in (xs, diag):
+            side[half.index] = k
+            dd[half.index] = d
+            uu[half.index] = d * s0 - s1
+            vv[half.index] = s2 - d * s1
+    for arr in (xs, diag, side, dd, uu, vv):
         arr.setflags(write=False)
-    return CantileverCompliance(x=xs, load_position=xm, rear=rear, front=front, diagonal=diag)
+    return CantileverCompliance(x=xs, load_position=xm, rear=rear, front=front, diagonal=diag,
+                                generators=(side, dd, uu, vv))  # fmt: skip

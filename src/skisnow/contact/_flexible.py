@@ -333,12 +333,17 @@ def solve_flexible(
         if ip.sum() > 0:
             p0, ok = restore(np.maximum(ip.ravel(), 0.0), xif, total, True)
             p0 = p0 if ok else None
-    if p0 is None:
-        p0 = rigid_start(hf, xif, total, True, snow_op.self_influence, len(shape))
+
+    def start() -> np.ndarray:  # the rigid-hull start, when a path needs one
+        if p0 is not None:
+            return p0
+        return rigid_start(hf, xif, total, True, snow_op.self_influence, len(shape))
+
     if candidates is None:
         candidates = model == "strip" and foundation == "half-space" and not rigid
         candidates = candidates and xs.size >= CANDIDATE_MIN_CELLS
     result = None
+    fields: tuple[np.ndarray, np.ndarray] | None = None
     if candidates:
         apply_full = lambda v: op(v.reshape(shape)).ravel()  # noqa: E731
         precond_full = lambda v: inverse(v.reshape(shape)).ravel()  # noqa: E731
@@ -349,7 +354,7 @@ def solve_flexible(
         # measured on 5 kg load chains, the nested grids from cold cost as much as MPRGP
         # from the previous step on the skate and 2.5x less on the classic of version 2,
         # and active-set steps from the previous step's set cost 1.3x more on the skate
-        result, start = multilevel_active_set(
+        result, start, cand, fields = multilevel_active_set(
             xs, h_line, np.asarray(ei), op=op, load=load, load_position=xm,
             modulus=modulus, width=width, tol=float(tol), workers=workers,
         )  # fmt: skip
@@ -362,7 +367,7 @@ def solve_flexible(
         if result is None and warm is None:
             # a few whole-grid steps shrink the start's support (the rigid-hull start spreads
             # over far more cells than a bending ski touches)
-            pre = active_set_cg(apply_full, precond_full, hf, xif, p0, tol=float(tol),
+            pre = active_set_cg(apply_full, precond_full, hf, xif, start(), tol=float(tol),
                                 max_iter=CANDIDATE_WARMUP)  # fmt: skip
             if pre[6]:
                 result = pre
@@ -372,7 +377,8 @@ def solve_flexible(
             # then the candidate iteration takes over
             q, it0, hist0, nap0 = warm
             result = flexible_on_candidates(op, inverse, hf, xif, q, tol=float(tol),
-                                            max_iter=int(max_iter) - it0)  # fmt: skip
+                                            max_iter=int(max_iter) - it0,
+                                            candidates=cand)  # fmt: skip
             if result is None:  # too many candidates: go on on the whole grid from there
                 result = active_set_cg(apply_full, precond_full, hf, xif, q, tol=float(tol),
                                        max_iter=int(max_iter) - it0)  # fmt: skip
@@ -384,14 +390,17 @@ def solve_flexible(
             lambda v: inverse(v.reshape(shape)).ravel(),
             hf,
             xif,
-            p0,
+            start(),
             tol=float(tol),
             max_iter=int(max_iter),
         )
     p, _g, a, b, iters, hist, converged, message, n_conv = result
     pressure = p.reshape(shape)
-    u_snow = snow_op(pressure)
-    w_beam = op.beam_part(pressure)
+    if fields is not None:  # the displacement and bending of the last whole-grid check
+        u_snow, w_beam = fields
+    else:
+        u_snow = snow_op(pressure)
+        w_beam = op.beam_part(pressure)
     w_beam_line = w_beam if model == "strip" else w_beam[:, 0]
     bent = h + w_beam
     gap = bent + u_snow - a - b * xi_grid

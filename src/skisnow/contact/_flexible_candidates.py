@@ -11,6 +11,8 @@ with the flexible ski of :func:`~skisnow.contact.solve_flexible`).
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 
 from skisnow.contact._coupled_operator import CoupledOperator
@@ -20,16 +22,49 @@ from skisnow.contact._polonsky_keer import plane_fit
 
 __all__ = ["CANDIDATE_MIN_CELLS", "CANDIDATE_WARMUP", "flexible_on_candidates"]
 
-#: grids shorter than this are solved whole; candidate sets larger than _CANDIDATE_MAX (or
-#: than _CANDIDATE_FRACTION of the grid) too: a dense block costs more than the FFT there
+#: grids shorter than this are solved whole; candidate sets larger than _CANDIDATE_FRACTION of
+#: the grid too
 CANDIDATE_MIN_CELLS = 1024
-_CANDIDATE_MAX = 700
 _CANDIDATE_FRACTION = 0.5
+#: up to this many candidates the operators are dense blocks, beyond by FFT over their span
+_DENSE_MAX = 0
+#: cells found penetrating off the candidates are added with this many neighbours each side
+_WIDEN = 8
 #: candidates: cells whose estimated gap is below this fraction of the largest snow
 #: displacement (the whole-grid check afterwards adds any cell that was missed)
 _CANDIDATE_MARGIN = 0.2
 #: whole-grid steps before the candidate iteration
 CANDIDATE_WARMUP = 6
+
+
+def _restricted(
+    op: CoupledOperator, inverse: Convolution, cells: np.ndarray
+) -> tuple[Callable[[np.ndarray], np.ndarray], Callable[[np.ndarray], np.ndarray]]:
+    """K_SS = K_snow,SS + K_beam,SS and the snow preconditioner restricted to the cells S: dense
+    blocks up to :data:`_DENSE_MAX` cells (the coupled one compiled), else the snow by FFT over
+    the span of S (:class:`~skisnow.contact._operators.RestrictedOperator`) and the beam by its
+    cumulative sums on the whole grid (O(n))."""
+    from skisnow.contact._flexible_pdas import _dense
+    from skisnow.contact._operators import RestrictedOperator
+
+    snow = op.snow
+    assert isinstance(snow, Convolution)
+    if cells.size <= _DENSE_MAX:
+        k_ss = _dense(op, cells)
+        m_ss = RestrictedOperator.build(snow, cells, dense=True).preconditioner(inverse).matrix
+        assert m_ss is not None
+        return (lambda v: k_ss @ v), (lambda v: m_ss @ v)
+    rest = RestrictedOperator.build(snow, cells, dense=False)
+    prec = rest.preconditioner(inverse)
+    force = np.zeros(h_size := snow.shape[0])
+    area = op.cell_area
+
+    def apply(v: np.ndarray) -> np.ndarray:
+        force[cells] = v * area  # the other cells stay zero
+        return rest(v) + op.beam(force)[cells]
+
+    assert h_size == op.beam.x.size
+    return apply, prec
 
 
 def flexible_on_candidates(
@@ -41,18 +76,18 @@ def flexible_on_candidates(
     *,
     tol: float,
     max_iter: int,
+    candidates: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray, float, float, int, list[float], bool, str, int] | None:
     """:func:`active_set_cg` on the candidate contact cells S of a strip grid.
 
-    As p = 0 off S, the iteration on S with the dense blocks K_SS (snow Toeplitz rows plus the
-    beam's block) and the snow preconditioner restricted to S is the whole-grid iteration as long
-    as no cell off S enters the contact. The gap is checked on the whole grid afterwards (one
-    application of the full operator); cells that penetrate are added, with every cell whose gap
-    is below the margin, and the iteration resumes from the pressure found. Returns None when the
-    candidates are too many for a dense block (then the caller iterates on the whole grid).
+    As p = 0 off S, the iteration on S with the operators restricted to S (:func:`_restricted`)
+    is the whole-grid iteration as long as no cell off S enters the contact. S is
+    ``candidates`` (with the start's support), else the start's support and every cell whose
+    gap is below the margin. The gap is checked on the whole grid afterwards (one application
+    of the full operator); cells that penetrate are added, with the cells near them, and the
+    iteration resumes from the pressure found. Returns None when the candidates are too many
+    (then the caller iterates on the whole grid).
     """
-    from skisnow.contact._operators import RestrictedOperator
-
     snow = op.snow
     assert isinstance(snow, Convolution)
     n = h.size
@@ -68,26 +103,20 @@ def flexible_on_candidates(
         a, b = plane_fit(g, xi, p > 0)
         return g - a - b * xi, float(np.abs(u_s).max()) + 1e-300
 
-    gap, u_max = full_gap(p)
-    cand = (p > 0) | (gap < _CANDIDATE_MARGIN * u_max)
+    if candidates is None:
+        gap, u_max = full_gap(p)
+        cand = (p > 0) | (gap < _CANDIDATE_MARGIN * u_max)
+    else:
+        cand = candidates | (p > 0)
     for _ in range(6):
         cells = np.flatnonzero(cand)
-        if cells.size > min(_CANDIDATE_MAX, _CANDIDATE_FRACTION * n) or cells.size < 2:
+        if cells.size > _CANDIDATE_FRACTION * n or cells.size < 2:
             return None
-        rest = RestrictedOperator.build(snow, cells, dense=True)
-        assert rest.matrix is not None
-        k_ss = rest.matrix + op.beam.block(cells) * op.cell_area
-        m_ss = rest.preconditioner(inverse).matrix
-        assert m_ss is not None
+        apply, precondition = _restricted(op, inverse, cells)
         ps, _, a, b, it, hist, converged, message, nap = active_set_cg(
-            lambda v: k_ss @ v,  # noqa: B023 (used within this pass)
-            lambda v: m_ss @ v,  # noqa: B023
-            h[cells],
-            xi[cells],
-            p[cells],
-            tol=tol,
+            apply, precondition, h[cells], xi[cells], p[cells], tol=tol,
             max_iter=max_iter - iterations,
-        )
+        )  # fmt: skip
         iterations += it
         history += hist
         n_apply += nap
@@ -101,5 +130,7 @@ def flexible_on_candidates(
         if not missed.any():
             g = gap + plane_fit(gap, xi, p > 0)[0]  # (only δ, θ are used by the caller)
             return p, g, a, b, iterations, history, True, message, n_apply
-        cand |= missed | (gap < _CANDIDATE_MARGIN * u_max)
+        cand |= np.convolve(missed, np.ones(2 * _WIDEN + 1), mode="same") > 0
+        if candidates is None:
+            cand |= gap < _CANDIDATE_MARGIN * u_max
     return None

@@ -29,29 +29,37 @@ contact set, and the answer, when one is returned, satisfies the same stopping r
 
 from __future__ import annotations
 
+from typing import NamedTuple
+
 import numpy as np
-from scipy.linalg import cho_factor, cho_solve
 
 from skisnow.contact._beam_operator import cantilever_compliance
 from skisnow.contact._coupled_operator import CoupledOperator
 from skisnow.contact._kernels import Convolution
-from skisnow.contact._operators import _toeplitz_rows
-from skisnow.contact._polonsky_keer import plane_fit
 from skisnow.contact._problem import _operator
 from skisnow.contact._starts import rigid_start
 
-__all__ = ["multilevel_active_set"]
+__all__ = ["Multilevel", "multilevel_active_set"]
 
-#: largest contact set solved by a dense Cholesky on the finest grid (n³/3 flops: ~2 ms at 500
-#: cells on one core; larger sets go to MPRGP from the coarse solution)
+#: largest contact set solved by a dense Cholesky on the finest grid (n³/3 flops: ~0.3 ms at
+#: 300 cells, ~2 ms at 600 on one core; larger sets go to MPRGP from the coarse solution)
 _PDAS_MAX_CELLS = 500
 #: active-set steps per grid before giving up
 _PDAS_MAX_STEPS = 25
 #: the grids: the finest coarsened by this factor while at least _COARSEST cells remain
-_COARSEN = 4
-_COARSEST = 256
+_COARSEN = 8
+_COARSEST = 64
 #: a cell off A enters only when its gap is below −this × tol × scale (no flip-flop on round-off)
 _ENTER = 1e-2
+#: the cells a finer grid's steps may use: its start set widened by this many cells each side
+#: (a coarse set is right to a coarse cell: _COARSEN fine cells); cells beyond that the
+#: whole-grid check finds penetrating are added with the same margin
+_MARGIN = 2 * _COARSEN
+#: the cells of a set farther than this from its edges are factored once (their block), the
+#: others (where the steps move the set) at every step: :mod:`skisnow.contact._bordered`
+_DEEP = 2 * _COARSEN
+#: whole-grid checks on the finest grid before giving up
+_ROUNDS = 6
 
 #: the compiled steps that give the coarsest grid's first set: tolerance and limit
 _FIRST_TOL = 1e-3
@@ -60,93 +68,118 @@ _FIRST_STEPS = 40
 _Result = tuple[np.ndarray, np.ndarray, float, float, int, list[float], bool, str, int]
 
 
+class Multilevel(NamedTuple):
+    """What :func:`multilevel_active_set` returns (see there)."""
+
+    result: _Result | None
+    start: np.ndarray | None
+    candidates: np.ndarray | None
+    fields: tuple[np.ndarray, np.ndarray] | None
+
+
+def _dense(op: CoupledOperator, cells: np.ndarray) -> np.ndarray:
+    """K_SS = K_snow,SS + A·K_beam,SS on the sorted ``cells`` of a strip grid (compiled)."""
+    from skisnow.contact._flexible_kernel import coupled_block
+
+    snow = op.snow
+    assert isinstance(snow, Convolution) and snow.kernel is not None
+    side, d, u, v = op.beam.generators
+    out = np.empty((cells.size, cells.size))
+    coupled_block(snow.kernel, snow.shape[0], cells, side, d, u, v, op.cell_area, out)
+    return out
+
+
+def _widen(mask: np.ndarray, r: int) -> np.ndarray:
+    """The cells within ``r`` cells of a True cell of ``mask``."""
+    c = np.concatenate([[0], np.cumsum(mask)])
+    i = np.arange(mask.size)
+    return c[np.minimum(i + r + 1, mask.size)] > c[np.maximum(i - r, 0)]
+
+
 def _active_set_steps(
-    op: CoupledOperator,
+    kss: np.ndarray,
     h: np.ndarray,
     xi: np.ndarray,
     act: np.ndarray,
     total: float,
     *,
-    tol: float,
+    threshold: float,
+    scale: float,
     max_cells: int,
-) -> tuple[np.ndarray, np.ndarray | None, _Result | None]:
-    """Primal–dual active-set steps (Hintermüller et al. 2002) from the contact set ``act``.
+    history: list[float],
+    seen: set[bytes],
+    cells: np.ndarray,
+) -> tuple[np.ndarray, np.ndarray | None, float, float, int, bool]:
+    """Primal–dual active-set steps (Hintermüller et al. 2002) on the cells of a dense block.
 
-    Each step solves K_AA p_A + h_A = δ + θξ_A with Σp_A = total, Σξ_A p_A = 0 (Cholesky of
-    K_AA and a 2 × 2 Schur system), then moves every cell whose sign is wrong. Returns the last
-    set, the last pressure (None before the first solve) and the result tuple of
-    :func:`~skisnow.contact._mprgp.active_set_cg` when the set repeats with the residual at or
-    below ``tol`` (else None: a cycle, a set larger than ``max_cells``, or too many steps).
+    ``kss`` is K on the cells S (``cells``: their grid indices), ``h``, ``xi`` and ``act`` (the
+    contact set) are on S. Each step solves K_AA p_A + h_A = δ + θξ_A with Σp_A = total,
+    Σξ_A p_A = 0 (Cholesky of K_AA and a 2 × 2 Schur system), computes the gap λ on S (one dense
+    product) and moves every cell whose sign is wrong (a cell enters when λ < −``threshold``).
+    Returns the set, the pressure on S (None before the first solve), δ, θ, the steps taken and
+    whether the set repeated (the KKT point on S); False on a cycle (a set in ``seen``), a set
+    larger than ``max_cells`` (or of fewer than 2 cells), a singular system or too many steps.
     """
-    snow = op.snow
-    assert isinstance(snow, Convolution) and snow.kernel is not None
-    n = h.size
-    seen: set[bytes] = set()
-    history: list[float] = []
-    p_last = None
+    from skisnow.contact._bordered import BlockSolver
+
+    def interior(ia: np.ndarray) -> np.ndarray:
+        """The cells of A farther than _DEEP cells from a cell off A (on the grid)."""
+        grid = np.zeros(int(cells[-1]) + _DEEP + 2, dtype=bool)
+        grid[cells[ia]] = True
+        deep = grid & ~_widen(~grid, _DEEP)
+        return ia[deep[cells[ia]]]
+
+    solver = BlockSolver(kss, np.column_stack([-h, np.ones(h.size), xi]), interior)
+    p_s, a, b = None, 0.0, 0.0
     for step in range(1, _PDAS_MAX_STEPS + 1):
-        cells = np.flatnonzero(act)
-        key = cells.tobytes()
-        if not 2 <= cells.size <= max_cells or key in seen:
-            break
+        ia = np.flatnonzero(act)
+        key = cells[ia].tobytes()
+        if not 2 <= ia.size <= max_cells or key in seen:
+            return act, p_s, a, b, step - 1, False
         seen.add(key)
-        k_aa = _toeplitz_rows(snow.kernel, n, cells)
-        k_aa += op.beam.block(cells, lower_only=True) * op.cell_area
-        try:
-            factor = cho_factor(k_aa, lower=True, overwrite_a=True, check_finite=False)
-            xa = xi[cells]
-            y = cho_solve(factor, np.column_stack([-h[cells], np.ones(cells.size), xa]),
-                          check_finite=False)  # fmt: skip
-            # p_A = y0 + δ y1 + θ y2 with Σp_A = total, Σξp_A = 0
-            e = np.column_stack([np.ones(cells.size), xa])
-            a, b = np.linalg.solve(e.T @ y[:, 1:], np.array([total, 0.0]) - e.T @ y[:, 0])
-        except np.linalg.LinAlgError:
-            break
-        p = np.zeros(n)
-        p[cells] = y[:, 0] + a * y[:, 1] + b * y[:, 2]
-        p_last = p
-        u = snow(p)
-        g = u + op.beam(p * op.cell_area) + h
-        lam = g - a - b * xi  # the gap: zero on A by construction
-        scale = float(np.ptp(h)) + float(np.abs(u).max()) + 1e-300
-        on = float(np.abs(lam[cells]).max())
+        y = solver.solve(ia)
+        if y is None:
+            return act, p_s, a, b, step - 1, False
+        xa = xi[ia]
+        # p_A = y0 + δ y1 + θ y2 with Σp_A = total, Σξp_A = 0
+        s0, s1, s2 = y.sum(axis=0)
+        t0, t1, t2 = xa @ y
+        det = s1 * t2 - s2 * t1
+        if not np.isfinite(det) or det == 0.0:
+            return act, p_s, a, b, step - 1, False
+        a = ((total - s0) * t2 - s2 * -t0) / det
+        b = (s1 * -t0 - (total - s0) * t1) / det
+        p_s = np.zeros(h.size)
+        p_s[ia] = y[:, 0] + a * y[:, 1] + b * y[:, 2]
+        lam = kss @ p_s + h - a - b * xi  # the gap: zero on A by construction
+        on = float(np.abs(lam[ia]).max())
         off = -min(float(np.where(act, 0.0, lam).min()), 0.0)
         history.append(max(on, off) / scale)
-        leave = act & (p <= 0.0)
-        enter = ~act & (lam < -_ENTER * tol * scale)
+        leave = act & (p_s <= 0.0)
+        enter = ~act & (lam < -threshold)
         if not (leave.any() or enter.any()):
-            if history[-1] > tol:
-                break
-            message = (
-                f"converged: max |gap residual| = {history[-1]:.2e} ≤ {tol:.1e} "
-                f"(primal–dual active set, {step} steps)"
-            )
-            return act, p, (p, g, float(a), float(b), step, history, True, message, step)
+            return act, p_s, a, b, step, True
         act = (act & ~leave) | enter
-    return act, p_last, None
+    return act, p_s, a, b, _PDAS_MAX_STEPS, False
 
 
-def _first_set(
-    op: CoupledOperator, h: np.ndarray, xi: np.ndarray, p0: np.ndarray, total: float
-) -> np.ndarray:
+def _first_set(kss: np.ndarray, snow: Convolution, h: np.ndarray, xi: np.ndarray,
+               p0: np.ndarray, total: float) -> np.ndarray:  # fmt: skip
     """The coarsest grid's first contact set: the support after a few compiled Polonsky–Keer
-    steps on the dense K_snow + K_beam from the rigid-hull start (the hull's support is several
-    times the contact, and active-set steps from it cycle: measured 25 steps without converging
-    on the classic on the stone), or {p − λ/K(0) > 0} if those steps fail."""
+    steps on the dense K_snow + K_beam (``kss``, every cell) from the rigid-hull start (the
+    hull's support is several times the contact, and active-set steps from it cycle: measured 25
+    steps without converging on the classic on the stone), or {p − λ/K(0) > 0} if those steps
+    fail."""
     from skisnow.contact import _pk_kernel as pk
-    from skisnow.contact._operators import _inverse_kernel
+    from skisnow.contact._candidates import _whole_dense
+    from skisnow.contact._polonsky_keer import plane_fit
 
-    snow = op.snow
-    assert isinstance(snow, Convolution) and snow.kernel is not None
-    n = h.size
-    cells = np.arange(n)
-    k = _toeplitz_rows(snow.kernel, n, cells) + op.beam.block(cells) * op.cell_area
-    m = _toeplitz_rows(_inverse_kernel(snow), n, cells, dtype=np.float32)
-    p, *_, status = pk.pk_dense(k, m, True, h, xi, p0, pk.MOMENT, float(total), _FIRST_TOL,
+    m = _whole_dense(snow)[1]  # the snow's circulant inverse, float32 (cached with the grid)
+    p, *_, status = pk.pk_dense(kss, m, True, h, xi, p0, pk.MOMENT, float(total), _FIRST_TOL,
                                 _FIRST_STEPS, snow.self_influence)  # fmt: skip
     if status in (pk.SUCCESSFUL, pk.MAX_STEPS, pk.EXACT) and (p > 0).sum() >= 2:
         return p > 0.0
-    g = op(p0) + h
+    g = kss @ p0 + h
     a, b = plane_fit(g, xi, p0 > 0.0)
     return p0 - (g - a - b * xi) / snow.self_influence > 0.0
 
@@ -163,15 +196,18 @@ def multilevel_active_set(
     width: float,
     tol: float,
     workers: int | None = None,
-) -> tuple[_Result | None, np.ndarray | None]:
+) -> Multilevel:
     """The flexible ski on a strip grid by active-set steps on nested grids.
 
     The contact set is found on grids coarsened by 4 (cell averages of the stations, of z0 +
-    w_boot and of EI; down to 256 cells), starting on the coarsest from the rigid-hull start
-    (:func:`~skisnow.contact._starts.rigid_start`) with the first set {p − λ/K(0) > 0}; each
-    grid's set, repeated onto the next finer one, starts the steps there, so the finest grid
-    (the problem of :func:`~skisnow.contact.solve_flexible`) needs only the few steps that move
-    the contact edges by a cell or two.
+    w_boot and of EI; down to 256 cells), starting on the coarsest from the compiled steps of
+    :func:`_first_set`; each grid's set, repeated onto the next finer one, starts the steps
+    there, so the finest grid (the problem of :func:`~skisnow.contact.solve_flexible`) needs
+    only the few steps that move the contact edges by a cell or two. The steps of a grid use
+    the dense coupled operator on its candidate cells only (the start set widened by
+    :data:`_MARGIN` cells; every cell on the coarsest grid); on the finest grid the gap is then
+    checked on the whole grid (one FFT, one beam product) and penetrating cells are added, so
+    the answer is the KKT point of the whole grid.
 
     Parameters
     ----------
@@ -188,20 +224,25 @@ def multilevel_active_set(
 
     Returns
     -------
-    result, start
-        The result tuple of :func:`~skisnow.contact._mprgp.active_set_cg` (None if the finest
-        grid did not converge: a contact set too large for the dense Cholesky, a cycle), and,
-        when None, the pressure of the finest grid solved, repeated onto ``x`` [Pa] (a start
-        for MPRGP; None if no grid was solved).
+    Multilevel
+        ``result``: the result tuple of :func:`~skisnow.contact._mprgp.active_set_cg` (None if
+        the finest grid did not converge: a contact set too large for the dense Cholesky, a
+        cycle); ``fields``: with it, the snow displacement and the beam deflection [m] of its
+        pressure. Else ``start``: the pressure of the finest grid solved, repeated onto ``x``
+        [Pa] (a start for MPRGP; None if no grid was solved) and ``candidates``: the finest
+        grid's candidate cells (its start set widened; None if it was not reached).
     """
     n = x.size
     sizes = [n]
     while sizes[0] % _COARSEN == 0 and sizes[0] // _COARSEN >= _COARSEST:
         sizes.insert(0, sizes[0] // _COARSEN)
     if len(sizes) == 1:
-        return None, None
+        return Multilevel(None, None, None, None)
     act: np.ndarray | None = None
     start: np.ndarray | None = None
+    u_max = 0.0
+    history: list[float] = []
+    n_steps = 0
     for m in sizes:
         f = n // m
         if m == n:
@@ -215,18 +256,69 @@ def multilevel_active_set(
             )
             snow = _operator("strip", (m,), dxc, width, modulus, width, workers)
             lop = CoupledOperator(snow=snow, beam=beam, cell_area=dxc * width)
+        snow = lop.snow
+        assert isinstance(snow, Convolution)
         xic = xc - load_position
         total = load / lop.cell_area
+        kss = None
         if act is None:
-            p0 = rigid_start(hc, xic, total, True, lop.snow.self_influence, 1)
-            act = _first_set(lop, hc, xic, p0, total)
+            cand = np.ones(m, dtype=bool)
+            kss = _dense(lop, np.arange(m))
+            p0 = rigid_start(hc, xic, total, True, snow.self_influence, 1)
+            act = _first_set(kss, snow, hc, xic, p0, total)
+            u_max = float(np.abs(snow(p0)).max())
         else:
             act = np.repeat(act, m // act.size)
-        act, p, result = _active_set_steps(
-            lop, hc, xic, act, total, tol=tol, max_cells=_PDAS_MAX_CELLS if m == n else m
-        )
-        if result is not None and m == n:
-            return result, None
+            cand = _widen(act, _MARGIN)
+        ptp = float(np.ptp(hc))
+        seen: set[bytes] = set()
+        p = None
+        if m == n and act.sum() > _PDAS_MAX_CELLS:
+            break  # too large for the dense factorisation: MPRGP from the coarse solution
+        for _ in range(_ROUNDS):
+            cells = np.flatnonzero(cand)
+            if kss is None or kss.shape[0] != cells.size:
+                kss = _dense(lop, cells)
+            scale = ptp + u_max + 1e-300
+            act_s, p_s, a, b, steps, ok = _active_set_steps(
+                kss, hc[cells], xic[cells], act[cells], total, threshold=_ENTER * tol * scale,
+                scale=scale, max_cells=_PDAS_MAX_CELLS if m == n else m, history=history,
+                seen=seen, cells=cells,
+            )  # fmt: skip
+            n_steps += steps
+            act = np.zeros(m, dtype=bool)
+            act[cells] = act_s
+            if p_s is not None:
+                p = np.zeros(m)
+                p[cells] = p_s
+            if not ok or p is None:
+                break
+            if m < n:
+                break  # a coarse grid only gives the next one its start
+            # the finest grid: the gap on every cell
+            u = snow(p)
+            u_max = float(np.abs(u).max())
+            w = lop.beam(p * lop.cell_area)
+            g = u + w + hc
+            lam = g - a - b * xic
+            scale = ptp + u_max + 1e-300
+            missed = ~act & (lam < -_ENTER * tol * scale)
+            if missed.any():
+                act |= missed
+                cand |= _widen(missed, _MARGIN)
+                kss = None
+                continue
+            on = float(np.abs(lam[act]).max())
+            off = -min(float(lam[~act].min(initial=0.0)), 0.0)
+            history.append(max(on, off) / scale)
+            if history[-1] > tol:
+                break
+            message = (
+                f"converged: max |gap residual| = {history[-1]:.2e} ≤ {tol:.1e} "
+                f"(primal–dual active set, {n_steps} steps)"
+            )
+            result = (p, g, float(a), float(b), n_steps, history, True, message, n_steps)
+            return Multilevel(result, None, None, (u, w))
         if p is not None:
             start = np.repeat(p, n // m)
-    return None, start
+    return Multilevel(None, start, cand if m == n else None, None)

@@ -27,6 +27,7 @@ Public names (stable; the micro area builds on them): :func:`surface_kernel`,
 
 from __future__ import annotations
 
+import functools
 import itertools
 from dataclasses import dataclass, field
 
@@ -330,9 +331,10 @@ class Convolution:
             return
         raise InputError("add_columns supports 1D and 2D grids")
 
-    @property
+    @functools.cached_property
     def self_influence(self) -> float:
-        """Self-influence coefficient K(0) [m/Pa]: a cell's displacement under its own 1 Pa."""
+        """Self-influence coefficient K(0) [m/Pa]: a cell's displacement under its own 1 Pa
+        (computed once per operator: an FFT pair)."""
         # inverse DFT at index 0 = mean of the full (Hermitian) spectrum
         return float(_self_coefficient(self))
 
