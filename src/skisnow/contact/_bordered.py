@@ -17,6 +17,8 @@ leaves the set, I is chosen again from the current set.
 
 from __future__ import annotations
 
+from collections.abc import Callable
+
 import numpy as np
 from scipy.linalg import lapack
 
@@ -36,7 +38,9 @@ class BlockSolver:
         A function of a set A (sorted rows) returning the rows of A to keep factored (I).
     """
 
-    def __init__(self, k: np.ndarray, rhs: np.ndarray, interior) -> None:  # noqa: ANN001
+    def __init__(
+        self, k: np.ndarray, rhs: np.ndarray, interior: Callable[[np.ndarray], np.ndarray]
+    ) -> None:
         self.k = k
         self.rhs = rhs
         self.interior = interior
@@ -81,9 +85,9 @@ class BlockSolver:
         """K_AA⁻¹ r_A for the sorted rows ``index`` (= A), shape (|A|, c); None if K_AA is not
         positive definite. The factor is kept for :meth:`apply`."""
         self.current = None
-        if self.inner is None or not self.in_inner[index].sum() == self.inner.size:
-            if not self._base(index):
-                return None
+        stale = self.inner is None or self.in_inner[index].sum() != self.inner.size
+        if stale and not self._base(index):
+            return None
         inner = self.inner
         assert inner is not None
         border = index[~self.in_inner[index]]

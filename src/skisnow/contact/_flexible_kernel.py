@@ -1,4 +1,4 @@
-"""The compiled kernels of the flexible ski's active-set steps (:mod:`skisnow.contact._flexible_pdas`).
+"""The compiled kernels of the flexible ski's active-set steps (:mod:`._flexible_pdas`).
 
 The dense coupled compliance K_SS = K_snow,SS + A·K_beam,SS on a set of cells S of a strip grid
 (Kalliorinne et al. 2023, eq. 2, plus the cantilever compliance of
