@@ -31,3 +31,54 @@ def cantilever_apply(
         k0 += kappa[i]
         k1 += kappa[i] * t[i]
         out[i] = d[i] * k0 - k1
+
+
+@numba.njit(cache=True, nogil=True)
+def cantilever_apply_strided(
+    f: np.ndarray,
+    start: int,
+    step: int,
+    d: np.ndarray,
+    t: np.ndarray,
+    c: np.ndarray,
+    out: np.ndarray,
+) -> None:  # pragma: no cover - compiled
+    """:func:`cantilever_apply` for the half whose j-th station is ``start + step·j`` of the
+    whole grid's ``f`` and ``out`` (no gathers: the stations of a half are contiguous)."""
+    m = d.size
+    kappa = np.empty(m + 1)
+    kappa[m] = 0.0
+    a0 = 0.0
+    a1 = 0.0
+    for j in range(m - 1, -1, -1):
+        fj = f[start + step * j]
+        a0 += fj
+        a1 += d[j] * fj
+        kappa[j] = c[j] * (a1 - t[j] * a0)
+    k0 = 0.0
+    k1 = 0.0
+    for i in range(m):
+        k0 += kappa[i]
+        k1 += kappa[i] * t[i]
+        out[start + step * i] = d[i] * k0 - k1
+
+
+@numba.njit(cache=True, nogil=True)
+def half_generators(
+    c: np.ndarray, t: np.ndarray, d: np.ndarray, diag: np.ndarray, u: np.ndarray, v: np.ndarray
+) -> None:  # pragma: no cover - compiled
+    """The diagonal K_ii = d_i² S0 − 2 d_i S1 + S2 and the generators u_i = d_i S0 − S1,
+    v_i = S2 − d_i S1 of one half (S0, S1, S2: the sums of c_k, c_k t_k, c_k t_k² over the
+    nodes t_k < d_i, i.e. k ≤ i), in one pass."""
+    s0 = 0.0
+    s1 = 0.0
+    s2 = 0.0
+    for i in range(d.size):
+        ct = c[i] * t[i]
+        s0 += c[i]
+        s1 += ct
+        s2 += ct * t[i]
+        di = d[i]
+        diag[i] = di * di * s0 - 2 * di * s1 + s2
+        u[i] = di * s0 - s1
+        v[i] = s2 - di * s1

@@ -95,6 +95,18 @@ class CantileverCompliance:
     def __call__(self, force: np.ndarray) -> np.ndarray:
         """Upward deflection [m] of every station under upward nodal forces ``force`` [N]."""
         f = np.asarray(force, dtype=np.float64)
+        if f.ndim == 1 and f.size == self.x.size:
+            # compiled, straight on the grid (the halves are contiguous runs of stations)
+            from skisnow.contact._beam_kernel import cantilever_apply_strided as _apply
+
+            out = np.empty(f.size)
+            f = np.ascontiguousarray(f)
+            split = self.rear.index.size
+            if split:
+                _apply(f, split - 1, -1, self.rear.d, self.rear.t, self.rear.c, out)
+            if split < f.size:
+                _apply(f, split, 1, self.front.d, self.front.t, self.front.c, out)
+            return out
         out = np.zeros_like(f)
         for half in (self.rear, self.front):
             if half.index.size:
@@ -160,9 +172,14 @@ class CantileverCompliance:
 
 
 def _half(index: np.ndarray, d: np.ndarray, ei: np.ndarray) -> _Half:
-    t = np.concatenate([[0.0], d])
-    dt = np.diff(t)
-    weight = 0.5 * (np.concatenate([dt, [0.0]]) + np.concatenate([[0.0], dt]))
+    t = np.empty(d.size + 1)
+    t[0] = 0.0
+    t[1:] = d
+    weight = np.empty(t.size)  # trapezoid weights: half of each neighbouring interval
+    dt = 0.5 * (t[1:] - t[:-1])
+    weight[:-1] = dt
+    weight[-1] = 0.0
+    weight[1:] += dt
     return _Half(index=index, d=d, t=t, c=weight / ei)
 
 
@@ -196,13 +213,18 @@ def cantilever_compliance(
         names the station), a clamp outside the stations.
     """
     xs = np.asarray(x, dtype=np.float64)
-    if xs.ndim != 1 or xs.size < 2 or not np.all(np.isfinite(xs)) or np.any(np.diff(xs) <= 0):
+    if (
+        xs.ndim != 1
+        or xs.size < 2
+        or not (np.isfinite(xs[0]) and np.isfinite(xs[-1]) and np.all(xs[1:] > xs[:-1]))
+    ):
         raise InputError("x must be a finite, strictly increasing 1D array of at least 2 stations")
     xm = float(load_position)
     if not (np.isfinite(xm) and xs[0] <= xm <= xs[-1]):
         raise InputError(
             f"load_position x_m = {xm} m must lie on the beam [{xs[0]}, {xs[-1]}] m (the clamp)"
         )
+    ei_arr = None
     if callable(stiffness):
         ei_at = stiffness
     else:
@@ -210,18 +232,23 @@ def cantilever_compliance(
         if ei_arr.ndim == 0:
             ei_at = lambda xx: np.full(np.shape(xx), float(ei_arr))  # noqa: E731
         elif ei_arr.shape == xs.shape:
-            ei_at = lambda xx: np.interp(xx, xs, ei_arr)  # noqa: E731
+            ei_at = lambda xx: np.interp(xx, xs, ei_arr)  # noqa: E731 (used when EI is callable)
         else:
             raise InputError(
                 f"stiffness EI must be a number, a callable or an array shaped like x "
                 f"{xs.shape}, got shape {ei_arr.shape}"
             )
+    ei_nodes = ei_arr if ei_arr is not None and ei_arr.ndim == 1 else None
     halves = []
+    split = int(np.searchsorted(xs, xm))  # the first station at or beyond x_m
     for side in ("rear", "front"):
-        index = np.flatnonzero(xs < xm)[::-1] if side == "rear" else np.flatnonzero(xs >= xm)
-        d = np.abs(xs[index] - xm)
+        index = np.arange(split - 1, -1, -1) if side == "rear" else np.arange(split, xs.size)
+        d = xm - xs[index] if side == "rear" else xs[index] - xm
         t = np.concatenate([[0.0], d])
-        ei = np.asarray(ei_at(xm + (t if side == "front" else -t)), dtype=np.float64)
+        if ei_nodes is not None:  # EI at the clamp, then at the stations (the nodes t = d)
+            ei = np.concatenate([[np.interp(xm, xs, ei_nodes)], ei_nodes[index]])
+        else:
+            ei = np.asarray(ei_at(xm + (t if side == "front" else -t)), dtype=np.float64)
         bad = ~np.isfinite(ei) | (ei <= 0.0)
         if np.any(bad):
             k = int(np.flatnonzero(bad)[0])
@@ -235,19 +262,16 @@ def cantilever_compliance(
     diag = np.zeros(xs.size)
     side = np.zeros(xs.size, dtype=np.int8)
     dd, uu, vv = np.zeros(xs.size), np.zeros(xs.size), np.zeros(xs.size)
+    from skisnow.contact._beam_kernel import half_generators
+
     for k, half in enumerate(halves):
         if half.index.size:
-            # K_ii = Σ_k c_k (d_i − t_k)₊²
-            c, t, d = half.c, half.t, half.d
-            ct = c * t
-            s0 = np.cumsum(c)[:-1]
-            s1 = np.cumsum(ct)[:-1]
-            s2 = np.cumsum(ct * t)[:-1]
-            diag[half.index] = d * d * s0 - 2 * d * s1 + s2
-            side[half.index] = k
-            dd[half.index] = d
-            uu[half.index] = d * s0 - s1
-            vv[half.index] = s2 - d * s1
+            # the stations of a half as a slice of the grid (rear: from x_m toward the tail);
+            # K_ii = Σ_k c_k (d_i − t_k)₊² and the generators of ``block``, compiled
+            at = slice(split - 1, None, -1) if k == 0 else slice(split, None)
+            half_generators(half.c, half.t, half.d, diag[at], uu[at], vv[at])
+            side[at] = k
+            dd[at] = half.d
     for arr in (xs, diag, side, dd, uu, vv):
         arr.setflags(write=False)
     return CantileverCompliance(x=xs, load_position=xm, rear=rear, front=front, diagonal=diag,
