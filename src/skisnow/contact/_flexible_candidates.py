@@ -42,8 +42,8 @@ def _restricted(
 ) -> tuple[Callable[[np.ndarray], np.ndarray], Callable[[np.ndarray], np.ndarray]]:
     """K_SS = K_snow,SS + K_beam,SS and the snow preconditioner restricted to the cells S: dense
     blocks up to :data:`_DENSE_MAX` cells (the coupled one compiled), else the snow by FFT over
-    the span of S (:class:`~skisnow.contact._operators.RestrictedOperator`) and the beam by its
-    cumulative sums on the whole grid (O(n))."""
+    the span of S (:class:`~skisnow.contact._operators.RestrictedOperator`) and the beam by the
+    prefix sums of its generators on S (O(|S|))."""
     from skisnow.contact._flexible_pdas import _dense
     from skisnow.contact._operators import RestrictedOperator
 
@@ -56,14 +56,16 @@ def _restricted(
         return (lambda v: k_ss @ v), (lambda v: m_ss @ v)
     rest = RestrictedOperator.build(snow, cells, dense=False)
     prec = rest.preconditioner(inverse)
-    force = np.zeros(h_size := snow.shape[0])
+    from skisnow.contact._flexible_kernel import beam_block_apply
+
     area = op.cell_area
+    side, d, u, v = op.beam.generators
+    bent = np.empty(cells.size)
 
-    def apply(v: np.ndarray) -> np.ndarray:
-        force[cells] = v * area  # the other cells stay zero
-        return rest(v) + op.beam(force)[cells]
+    def apply(x: np.ndarray) -> np.ndarray:
+        beam_block_apply(cells, side, d, u, v, area, np.ascontiguousarray(x), bent)
+        return rest(x) + bent
 
-    assert h_size == op.beam.x.size
     return apply, prec
 
 

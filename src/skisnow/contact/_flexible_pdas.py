@@ -57,7 +57,7 @@ _ENTER = 1e-2
 _MARGIN = 2 * _COARSEN
 #: the cells of a set farther than this from its edges are factored once (their block), the
 #: others (where the steps move the set) at every step: :mod:`skisnow.contact._bordered`
-_DEEP = 2 * _COARSEN
+_DEEP = 16
 #: whole-grid checks on the finest grid before giving up
 _ROUNDS = 6
 
@@ -107,60 +107,35 @@ def _active_set_steps(
     scale: float,
     max_cells: int,
     history: list[float],
-    seen: set[bytes],
+    seen: list[int],
     cells: np.ndarray,
 ) -> tuple[np.ndarray, np.ndarray | None, float, float, int, bool]:
     """Primal–dual active-set steps (Hintermüller et al. 2002) on the cells of a dense block.
 
     ``kss`` is K on the cells S (``cells``: their grid indices), ``h``, ``xi`` and ``act`` (the
     contact set) are on S. Each step solves K_AA p_A + h_A = δ + θξ_A with Σp_A = total,
-    Σξ_A p_A = 0 (Cholesky of K_AA and a 2 × 2 Schur system), computes the gap λ on S (one dense
-    product) and moves every cell whose sign is wrong (a cell enters when λ < −``threshold``).
-    Returns the set, the pressure on S (None before the first solve), δ, θ, the steps taken and
-    whether the set repeated (the KKT point on S); False on a cycle (a set in ``seen``), a set
-    larger than ``max_cells`` (or of fewer than 2 cells), a singular system or too many steps.
+    Σξ_A p_A = 0 (a block Cholesky factorisation: the set's interior factored once,
+    :mod:`skisnow.contact._bordered`), computes the gap λ on S (one dense product) and moves
+    every cell whose sign is wrong (a cell enters when λ < −``threshold``); compiled
+    (:func:`skisnow.contact._pdas_kernel.pdas_dense`). Returns the set, the pressure on S (None
+    before the first solve), δ, θ, the steps taken and whether the set repeated (the KKT point
+    on S); False on a cycle (a set in ``seen``, hashes of the sets solved), a set larger than
+    ``max_cells`` (or of fewer than 2 cells), a system not positive definite or too many steps.
     """
-    from skisnow.contact._bordered import BlockSolver
+    from skisnow.contact import _pdas_kernel as pk
 
-    def interior(ia: np.ndarray) -> np.ndarray:
-        """The cells of A farther than _DEEP cells from a cell off A (on the grid)."""
-        grid = np.zeros(int(cells[-1]) + _DEEP + 2, dtype=bool)
-        grid[cells[ia]] = True
-        deep = grid & ~_widen(~grid, _DEEP)
-        return ia[deep[cells[ia]]]
-
-    solver = BlockSolver(kss, np.column_stack([-h, np.ones(h.size), xi]), interior)
-    p_s, a, b = None, 0.0, 0.0
-    for step in range(1, _PDAS_MAX_STEPS + 1):
-        ia = np.flatnonzero(act)
-        key = cells[ia].tobytes()
-        if not 2 <= ia.size <= max_cells or key in seen:
-            return act, p_s, a, b, step - 1, False
-        seen.add(key)
-        y = solver.solve(ia)
-        if y is None:
-            return act, p_s, a, b, step - 1, False
-        xa = xi[ia]
-        # p_A = y0 + δ y1 + θ y2 with Σp_A = total, Σξp_A = 0
-        s0, s1, s2 = y.sum(axis=0)
-        t0, t1, t2 = xa @ y
-        det = s1 * t2 - s2 * t1
-        if not np.isfinite(det) or det == 0.0:
-            return act, p_s, a, b, step - 1, False
-        a = ((total - s0) * t2 - s2 * -t0) / det
-        b = (s1 * -t0 - (total - s0) * t1) / det
-        p_s = np.zeros(h.size)
-        p_s[ia] = y[:, 0] + a * y[:, 1] + b * y[:, 2]
-        lam = kss @ p_s + h - a - b * xi  # the gap: zero on A by construction
-        on = float(np.abs(lam[ia]).max())
-        off = -min(float(np.where(act, 0.0, lam).min()), 0.0)
-        history.append(max(on, off) / scale)
-        leave = act & (p_s <= 0.0)
-        enter = ~act & (lam < -threshold)
-        if not (leave.any() or enter.any()):
-            return act, p_s, a, b, step, True
-        act = (act & ~leave) | enter
-    return act, p_s, a, b, _PDAS_MAX_STEPS, False
+    act = np.array(act, dtype=bool)
+    keys = np.zeros(len(seen) + _PDAS_MAX_STEPS, dtype=np.uint64)
+    keys[: len(seen)] = seen
+    hist = np.empty(_PDAS_MAX_STEPS)
+    p_s, a, b, steps, status, n_seen, n_hist = pk.pdas_dense(
+        *pk.lapack(), kss, h, xi, act, float(total), float(threshold), float(scale),
+        int(max_cells), _PDAS_MAX_STEPS, np.asarray(cells, dtype=np.int64), _DEEP, keys,
+        len(seen), hist, 0,
+    )  # fmt: skip
+    seen[:] = keys[:n_seen].tolist()
+    history += hist[:n_hist].tolist()
+    return act, (p_s if steps else None), float(a), float(b), int(steps), status == pk.CONVERGED
 
 
 def _first_set(kss: np.ndarray, snow: Convolution, h: np.ndarray, xi: np.ndarray,
@@ -271,7 +246,7 @@ def multilevel_active_set(
             act = np.repeat(act, m // act.size)
             cand = _widen(act, _MARGIN)
         ptp = float(np.ptp(hc))
-        seen: set[bytes] = set()
+        seen: list[int] = []
         p = None
         if m == n and act.sum() > _PDAS_MAX_CELLS:
             break  # too large for the dense factorisation: MPRGP from the coarse solution
