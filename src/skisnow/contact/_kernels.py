@@ -265,6 +265,12 @@ class Convolution:
                 f"pressure has shape {p.shape}; the operator was built for grids of shape "
                 f"{self.shape}"
             )
+        if self.ndim == 1 and p.ndim == 1 and p.dtype == np.float64:
+            # one transform (threads cannot split it): NumPy's pocketfft gives the same bits as
+            # SciPy's with half the call overhead (~20 µs a pair: most of a small window's cost)
+            spec = np.fft.rfft(p, n=self.fft_shape[0])
+            spec *= self.spectrum
+            return np.fft.irfft(spec, n=self.fft_shape[0])[: self.shape[0]]
         if self.ndim == 1:
             spec = sfft.rfft(p, n=self.fft_shape[0], axis=-1, workers=self.workers)
             spec *= self.spectrum
