@@ -48,24 +48,26 @@ def coupled_block(
         vs[j] = v[c]
         if side[c] == 0:
             n_rear += 1
-    for i in range(m):
+    for i in range(m):  # one pass per row: the kernel plus, within i's half, the beam
         ci = cells[i] + n - 1
         row = out[i]
-        for j in range(m):
-            row[j] = kernel[ci - cells[j]]
         di = ds[i]
         ui = us[i]
         vi = vs[i]
         if i < n_rear:  # rear: d decreases along the cells; j <= i is farther from the clamp
             for j in range(i + 1):
-                row[j] += area * (ui * ds[j] + vi)
+                row[j] = kernel[ci - cells[j]] + area * (ui * ds[j] + vi)
             for j in range(i + 1, n_rear):
-                row[j] += area * (us[j] * di + vs[j])
+                row[j] = kernel[ci - cells[j]] + area * (us[j] * di + vs[j])
+            for j in range(n_rear, m):
+                row[j] = kernel[ci - cells[j]]
         else:  # front: d increases along the cells
+            for j in range(n_rear):
+                row[j] = kernel[ci - cells[j]]
             for j in range(n_rear, i):
-                row[j] += area * (us[j] * di + vs[j])
+                row[j] = kernel[ci - cells[j]] + area * (us[j] * di + vs[j])
             for j in range(i, m):
-                row[j] += area * (ui * ds[j] + vi)
+                row[j] = kernel[ci - cells[j]] + area * (ui * ds[j] + vi)
 
 
 @numba.njit(cache=True, nogil=True)

@@ -57,7 +57,7 @@ _ENTER = 1e-2
 _MARGIN = 2 * _COARSEN
 #: the cells of a set farther than this from its edges are factored once (their block), the
 #: others (where the steps move the set) at every step: :mod:`skisnow.contact._bordered`
-_DEEP = 16
+_DEEP = _COARSEN
 #: whole-grid checks on the finest grid before giving up
 _ROUNDS = 6
 
@@ -87,6 +87,29 @@ def _dense(op: CoupledOperator, cells: np.ndarray) -> np.ndarray:
     out = np.empty((cells.size, cells.size))
     coupled_block(snow.kernel, snow.shape[0], cells, side, d, u, v, op.cell_area, out)
     return out
+
+
+def _prolong_set(act: np.ndarray, p: np.ndarray | None, f: int) -> np.ndarray:
+    """A coarse contact set on the grid ``f`` times finer, its edges placed where the coarse
+    pressure extrapolates to zero as a contact edge does, p ∝ √(distance) (p² linear through
+    the edge cell and its inner neighbour), within the cell beyond the edge cell."""
+    fine = np.repeat(act, f)
+    if p is None or p.size != act.size:
+        return fine
+    q = np.where(act, p, 0.0) ** 2
+    m = act.size
+    for k in np.flatnonzero(act).tolist():
+        for out, inner in ((k + 1, k - 1), (k - 1, k + 1)):  # a right edge, then a left one
+            if not (0 <= out < m and 0 <= inner < m) or act[out] or not act[inner]:
+                continue
+            drop = q[inner] - q[k]
+            reach = q[k] / drop if drop > 0 else 0.5  # coarse cells beyond the centre of k
+            reach = min(max(reach, 0.0), 1.0)
+            # fine cells of k and of the cell beyond: in contact up to the extrapolated edge
+            lo, hi = min(k, out) * f, (max(k, out) + 1) * f
+            centre = (np.arange(lo, hi) + 0.5) / f - 0.5  # in coarse cells
+            fine[lo:hi] = (centre - k) * (out - k) < reach
+    return fine
 
 
 def _widen(mask: np.ndarray, r: int) -> np.ndarray:
@@ -214,6 +237,7 @@ def multilevel_active_set(
     if len(sizes) == 1:
         return Multilevel(None, None, None, None)
     act: np.ndarray | None = None
+    p_coarse: np.ndarray | None = None
     start: np.ndarray | None = None
     u_max = 0.0
     history: list[float] = []
@@ -243,7 +267,7 @@ def multilevel_active_set(
             act = _first_set(kss, snow, hc, xic, p0, total)
             u_max = float(np.abs(snow(p0)).max())
         else:
-            act = np.repeat(act, m // act.size)
+            act = _prolong_set(act, p_coarse, m // act.size)
             cand = _widen(act, _MARGIN)
         ptp = float(np.ptp(hc))
         seen: list[int] = []
@@ -296,4 +320,5 @@ def multilevel_active_set(
             return Multilevel(result, None, None, (u, w))
         if p is not None:
             start = np.repeat(p, n // m)
+        p_coarse = p
     return Multilevel(None, start, cand if m == n else None, None)
