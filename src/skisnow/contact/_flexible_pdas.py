@@ -319,6 +319,7 @@ def multilevel_active_set(
             result = (p, g, float(a), float(b), n_steps, history, True, message, n_steps)
             return Multilevel(result, None, None, (u, w))
         if p is not None:
-            start = np.repeat(p, n // m)
+            fine = (np.arange(n) + 0.5) / (n // m) - 0.5
+            start = np.interp(fine, np.arange(m), p) * _prolong_set(p > 0, p, n // m)
         p_coarse = p
     return Multilevel(None, start, cand if m == n else None, None)
