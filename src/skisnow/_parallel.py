@@ -27,6 +27,9 @@ def default_workers() -> int:
 
 @functools.lru_cache(maxsize=1)
 def _blas_controller():
+    # SciPy's BLAS is a library of its own (the compiled flexible-ski kernels call it through
+    # scipy.linalg.cython_blas): load it before the controller lists the loaded libraries
+    import scipy.linalg  # noqa: F401
     from threadpoolctl import ThreadpoolController
 
     return ThreadpoolController()
