@@ -334,10 +334,9 @@ def solve_flexible(
             p0, ok = restore(np.maximum(ip.ravel(), 0.0), xif, total, True)
             p0 = p0 if ok else None
 
-    def start() -> np.ndarray:  # the rigid-hull start, when a path needs one
-        if p0 is not None:
-            return p0
-        return rigid_start(hf, xif, total, True, snow_op.self_influence, len(shape))
+    def hull_start() -> np.ndarray:  # the rigid-hull start, for the paths that need one
+        k0 = snow_op.self_influence
+        return p0 if p0 is not None else rigid_start(hf, xif, total, True, k0, len(shape))
 
     if candidates is None:
         candidates = model == "strip" and foundation == "half-space" and not rigid
@@ -367,7 +366,7 @@ def solve_flexible(
         if result is None and warm is None:
             # a few whole-grid steps shrink the start's support (the rigid-hull start spreads
             # over far more cells than a bending ski touches)
-            pre = active_set_cg(apply_full, precond_full, hf, xif, start(), tol=float(tol),
+            pre = active_set_cg(apply_full, precond_full, hf, xif, hull_start(), tol=float(tol),
                                 max_iter=CANDIDATE_WARMUP)  # fmt: skip
             if pre[6]:
                 result = pre
@@ -390,17 +389,14 @@ def solve_flexible(
             lambda v: inverse(v.reshape(shape)).ravel(),
             hf,
             xif,
-            start(),
+            hull_start(),
             tol=float(tol),
             max_iter=int(max_iter),
         )
     p, _g, a, b, iters, hist, converged, message, n_conv = result
     pressure = p.reshape(shape)
-    if fields is not None:  # the displacement and bending of the last whole-grid check
-        u_snow, w_beam = fields
-    else:
-        u_snow = snow_op(pressure)
-        w_beam = op.beam_part(pressure)
+    # the displacement and bending (those of the last whole-grid check of the active-set steps)
+    u_snow, w_beam = fields or (snow_op(pressure), op.beam_part(pressure))
     w_beam_line = w_beam if model == "strip" else w_beam[:, 0]
     bent = h + w_beam
     gap = bent + u_snow - a - b * xi_grid

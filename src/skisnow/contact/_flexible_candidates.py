@@ -1,12 +1,14 @@
 """The flexible-ski iteration restricted to the candidate contact cells of a strip grid.
 
-A bending ski touches the snow over a few hundred of its 4096 stations. After a few whole-grid
-steps of :func:`~skisnow.contact._mprgp.active_set_cg`, the iteration runs on the candidate cells
-S with the dense blocks K_snow,SS + K_beam,SS (the snow's Toeplitz rows,
-:class:`~skisnow.contact._operators.RestrictedOperator`, plus the beam's block) and the snow
-preconditioner restricted to S; the gap is then checked on the whole grid and missed cells
-added, so the restriction changes the cost, not the answer (Kalliorinne et al. 2023, eq. 2–3,
-with the flexible ski of :func:`~skisnow.contact.solve_flexible`).
+A bending ski touches the snow over a few hundred of its 4096 stations. When the contact is too
+large for the dense active-set steps (:mod:`skisnow.contact._flexible_pdas`), MPRGP
+(:func:`~skisnow.contact._mprgp.active_set_cg`) runs from the coarse grids' solution on the
+candidate cells S only: the snow by FFT over the span of S (the window of a Toeplitz operator,
+:class:`~skisnow.contact._operators.RestrictedOperator`), the beam by prefix sums of its
+generators on S (O(|S|), :func:`~skisnow.contact._flexible_kernel.beam_block_apply`), the
+snow's circulant preconditioner restricted the same way. The gap is then checked on the whole
+grid and missed cells added, so the restriction changes the cost, not the answer (Kalliorinne
+et al. 2023, eq. 2–3, with the flexible ski of :func:`~skisnow.contact.solve_flexible`).
 """
 
 from __future__ import annotations
@@ -26,8 +28,6 @@ __all__ = ["CANDIDATE_MIN_CELLS", "CANDIDATE_WARMUP", "flexible_on_candidates"]
 #: the grid too
 CANDIDATE_MIN_CELLS = 1024
 _CANDIDATE_FRACTION = 0.5
-#: up to this many candidates the operators are dense blocks, beyond by FFT over their span
-_DENSE_MAX = 0
 #: cells found penetrating off the candidates are added with this many neighbours each side
 _WIDEN = 8
 #: candidates: cells whose estimated gap is below this fraction of the largest snow
@@ -40,24 +40,15 @@ CANDIDATE_WARMUP = 6
 def _restricted(
     op: CoupledOperator, inverse: Convolution, cells: np.ndarray
 ) -> tuple[Callable[[np.ndarray], np.ndarray], Callable[[np.ndarray], np.ndarray]]:
-    """K_SS = K_snow,SS + K_beam,SS and the snow preconditioner restricted to the cells S: dense
-    blocks up to :data:`_DENSE_MAX` cells (the coupled one compiled), else the snow by FFT over
-    the span of S (:class:`~skisnow.contact._operators.RestrictedOperator`) and the beam by the
-    prefix sums of its generators on S (O(|S|))."""
-    from skisnow.contact._flexible_pdas import _dense
+    """K_SS = K_snow,SS + K_beam,SS and the snow preconditioner restricted to the cells S: the
+    snow by FFT over the span of S, the beam by the prefix sums of its generators on S."""
+    from skisnow.contact._flexible_kernel import beam_block_apply
     from skisnow.contact._operators import RestrictedOperator
 
     snow = op.snow
     assert isinstance(snow, Convolution)
-    if cells.size <= _DENSE_MAX:
-        k_ss = _dense(op, cells)
-        m_ss = RestrictedOperator.build(snow, cells, dense=True).preconditioner(inverse).matrix
-        assert m_ss is not None
-        return (lambda v: k_ss @ v), (lambda v: m_ss @ v)
     rest = RestrictedOperator.build(snow, cells, dense=False)
     prec = rest.preconditioner(inverse)
-    from skisnow.contact._flexible_kernel import beam_block_apply
-
     area = op.cell_area
     side, d, u, v = op.beam.generators
     bent = np.empty(cells.size)

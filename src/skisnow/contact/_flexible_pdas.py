@@ -6,18 +6,23 @@ p ≥ 0, λ = K p + h − δ − θξ ≥ 0 (the gap), p·λ = 0, i.e. p = max(0
 semismooth equation whose Newton step is the primal–dual active-set step of Hintermüller, Ito &
 Kunisch (2002, SIAM J. Optim. 13, 865–888, Algorithm 1 with the equality constraints kept as
 Lagrange multipliers): on the current contact set A, solve K_AA p_A + h_A = δ + θξ_A with
-Σp_A and Σξ_A p_A prescribed (a dense Cholesky of K_AA, the half-space's Toeplitz rows plus the
-beam's block, and a 2 × 2 Schur system for δ, θ), set p = 0 off A, compute the gap λ on the whole
-grid by FFT, and move *every* cell whose sign is wrong at once: cells of A with p ≤ 0 leave,
-cells off A with λ < 0 enter. When A repeats the KKT point is exact (up to round-off) and p ≥ 0,
-λ ≥ 0 hold on the whole grid.
+Σp_A and Σξ_A p_A prescribed (a Cholesky factorisation of K_AA, the half-space's Toeplitz rows
+plus the beam's block, and a 2 × 2 Schur system for δ, θ), set p = 0 off A, compute the gap λ,
+and move *every* cell whose sign is wrong at once: cells of A with p ≤ 0 leave, cells off A with
+λ < 0 enter. When A repeats the KKT point is exact (up to round-off) and p ≥ 0, λ ≥ 0 hold.
 
 From a poor set the steps are slow (a set too wide leaves a few cells per edge per step, with
 large negative pressures at its edges), and a dense factorisation of the ~1400 cells that the
-rigid-hull start spreads over costs ~50 ms. So the set is found on nested grids coarsened by 4
-(cell averages; 256 and 1024 cells for 4096 stations), each grid's set repeated onto the next:
-the finest grid then needs only the 3–4 steps that move the edges by a cell or two (measured on
-the shipped skis of version 2).
+rigid-hull start spreads over costs ~50 ms. So the set is found on nested grids coarsened by 8
+(cell averages; 64 and 512 cells for 4096 stations), each grid's set carried onto the next with
+its edges where the coarse pressure, extrapolated as a contact edge's p ∝ √distance, reaches
+zero: the finest grid then needs only the 2–4 steps that move the edges by a cell or two
+(measured on the shipped skis of version 2). The steps of a grid run on its candidate cells
+only (the carried set widened by two coarse cells: every cell on the coarsest grid) with the
+dense coupled block K_SS (compiled assembly, :mod:`skisnow.contact._flexible_kernel`), λ on S by
+one dense product, and compiled (:mod:`skisnow.contact._pdas_kernel`: the set's interior is
+factored once, the moving border through a small Schur complement); on the finest grid λ is then
+checked on every cell (one FFT, one beam product) and penetrating cells are added.
 
 On the classic of version 2 the MPRGP iteration (:mod:`skisnow.contact._mprgp`) spends 60–300
 steps moving the contact set one face at a time (measured: an exact preconditioner on the
@@ -56,7 +61,7 @@ _ENTER = 1e-2
 #: whole-grid check finds penetrating are added with the same margin
 _MARGIN = 2 * _COARSEN
 #: the cells of a set farther than this from its edges are factored once (their block), the
-#: others (where the steps move the set) at every step: :mod:`skisnow.contact._bordered`
+#: others (where the steps move the set) at every step: :mod:`skisnow.contact._pdas_kernel`
 _DEEP = _COARSEN
 #: whole-grid checks on the finest grid before giving up
 _ROUNDS = 6
@@ -138,7 +143,7 @@ def _active_set_steps(
     ``kss`` is K on the cells S (``cells``: their grid indices), ``h``, ``xi`` and ``act`` (the
     contact set) are on S. Each step solves K_AA p_A + h_A = δ + θξ_A with Σp_A = total,
     Σξ_A p_A = 0 (a block Cholesky factorisation: the set's interior factored once,
-    :mod:`skisnow.contact._bordered`), computes the gap λ on S (one dense product) and moves
+    :mod:`skisnow.contact._pdas_kernel`), computes the gap λ on S (one dense product) and moves
     every cell whose sign is wrong (a cell enters when λ < −``threshold``); compiled
     (:func:`skisnow.contact._pdas_kernel.pdas_dense`). Returns the set, the pressure on S (None
     before the first solve), δ, θ, the steps taken and whether the set repeated (the KKT point

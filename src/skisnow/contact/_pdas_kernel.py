@@ -8,12 +8,21 @@ gap λ on S and moves every cell whose sign is wrong. On a few hundred cells the
 costs more than its arithmetic (~40 NumPy calls of a few µs per step); compiled, a step costs its
 factorisations and products.
 
-The solves with K_AA are the block Cholesky factorisation of :mod:`skisnow.contact._bordered`
-(Golub & Van Loan 2013, §4.2.9): the cells deep inside the set (I) are factored once, the border
-B = A \\ I (where the steps move the set) through the Schur complement K_BB − WᵀW, W = L_I⁻¹K_IB,
-with W's columns kept from step to step. The triangular solves and factorisations call LAPACK
-and BLAS (SciPy's ``cython_lapack``/``cython_blas``) through function pointers passed as
-arguments, so the compiled code is cached on disk like the other kernels.
+Successive sets differ by a few cells at the contact edges; the cells deep inside the set (I:
+farther than a few cells from a cell off it) stay in contact. In the order [I, B], B = A \\ I,
+the Cholesky factor of K_AA is the block factor (Golub & Van Loan 2013, Matrix Computations,
+§4.2.9)
+
+    K_AA = [L_I   0 ] [L_Iᵀ  W  ],   W = L_I⁻¹ K_IB,   L_S L_Sᵀ = K_BB − Wᵀ W,
+           [Wᵀ   L_S] [ 0   L_Sᵀ]
+
+so L_I is factored once, the column of W of a border cell once, and each step factors only the
+small Schur complement: O(|I|·|B|²) a step instead of |A|³/3, with the backward stability of a
+Cholesky factorisation (it is one, of K_AA reordered; a bordered update that deletes the cells
+that left through multipliers is not: measured 1e-12 instead of 1e-16 on the gap). When a cell
+of I leaves, I is chosen again. The factorisations and triangular solves call LAPACK and BLAS
+(SciPy's ``cython_lapack``/``cython_blas``) through function pointers passed as arguments, so
+the compiled code is cached on disk like the other kernels.
 """
 
 from __future__ import annotations
