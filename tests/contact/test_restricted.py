@@ -167,8 +167,8 @@ def test_compiled_active_set_steps_reach_the_kkt_point() -> None:
     # from a set far too wide (every cell: the interior factored first must be chosen again as
     # cells deep inside it leave), the compiled steps end on a set whose solution meets the KKT
     # conditions of the dense problem: p ≥ 0, λ ≥ 0, p·λ = 0, the two balances
-    from skisnow.contact import cantilever_compliance, strip_convolution
     from skisnow.contact import _pdas_kernel as pk
+    from skisnow.contact import cantilever_compliance, strip_convolution
     from skisnow.contact._coupled_operator import CoupledOperator
     from skisnow.contact._flexible_pdas import _dense
 
