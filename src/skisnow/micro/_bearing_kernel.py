@@ -55,6 +55,8 @@ import math
 import numba
 import numpy as np
 
+from skisnow.micro._bearing_select import _band_select, _kth_largest_inplace
+
 __all__ = ["bearing_search", "sag"]
 
 #: pixels per chunk of a row span in step 3 (bounded, counted or read as a whole)
@@ -157,36 +159,6 @@ def bearing_search(
 # target. A loop that computes F from a sag table and runs an in-place quickselect touches each
 # candidate twice and releases the GIL, so ``bearing_sweep`` threads use both cores.
 # ---------------------------------------------------------------------------------------------
-
-
-@numba.njit(cache=True, nogil=True)
-def _kth_largest_inplace(a: np.ndarray, m: int, k: int) -> float:  # pragma: no cover - jit
-    """The k-th largest of a[:m] (k = 1: the maximum); reorders a[:m] (Wirth's selection)."""
-    t = m - k  # index of the answer in ascending order
-    lo = 0
-    hi = m - 1
-    while lo < hi:
-        x = a[t]
-        i = lo
-        j = hi
-        while True:
-            while a[i] < x:
-                i += 1
-            while x < a[j]:
-                j -= 1
-            if i <= j:
-                tmp = a[i]
-                a[i] = a[j]
-                a[j] = tmp
-                i += 1
-                j -= 1
-            if i > j:
-                break
-        if j < t:
-            lo = i
-        if t < i:
-            hi = j
-    return a[t]
 
 
 @numba.njit(cache=True, nogil=True)
@@ -409,134 +381,3 @@ def _bearing_kernel(
                             if guess == guess:
                                 e = abs(fn1 - guess)
                                 err = e if err < 0.0 else 0.7 * err + 0.3 * e
-
-
-@numba.njit(cache=True, nogil=True)
-def _band_select(
-    h: np.ndarray,
-    w: np.ndarray,
-    ch_i: np.ndarray,
-    ch_j0: np.ndarray,
-    ch_j1: np.ndarray,
-    ch_lo: np.ndarray,
-    ch_hi: np.ndarray,
-    ch_w: np.ndarray,
-    nch: int,
-    bulk: np.ndarray,
-    pi: int,
-    pj: int,
-    mirror: np.ndarray,
-    n: int,
-    g_lo: float,
-    g_hi: float,
-    band: np.ndarray,
-    band_w: np.ndarray,
-    res: np.ndarray,
-) -> bool:  # pragma: no cover - jit
-    """Exact contact of the position (pi, pj) from the tile's candidates (chunks of row
-    spans), if its threshold fn1 (the (n+1)-th largest F) lies in [g_lo, g_hi]; returns False
-    otherwise.
-
-    A chunk whose F is bounded below g_lo is skipped, one bounded above g_hi is counted whole
-    (its pixels are all in the contact); the others are read pixel by pixel in one branch-free
-    pass that sums the pixels above g_hi and gathers the band [g_lo, g_hi] in raster order. The
-    selection runs on the band only. ``res`` receives (Σw over the n largest, z0 = max F, n-th
-    largest F, fn1, w of the (n+1)-th pixel)."""
-    khi = 0
-    kb = 0
-    nb = 0
-    w_hi = 0.0
-    z_hi = -np.inf
-    fmin_hi = np.inf
-    off = (mirror.shape[1] - 1) // 2 - pj  # mirror column of the pixel column gj: gj + off
-    for c in range(nch):
-        gi = ch_i[c]
-        j0 = ch_j0[c]
-        j1 = ch_j1[c]
-        srow = mirror[abs(gi - pi)]
-        # the sag is least at the chunk's column nearest pj, largest at its farthest end
-        jn = min(max(pj, j0), j1 - 1)
-        jf = j0 if pj - j0 > j1 - 1 - pj else j1 - 1
-        if ch_hi[c] - srow[jn + off] < g_lo:
-            continue
-        if ch_lo[c] - srow[jf + off] > g_hi:
-            khi += j1 - j0
-            w_hi += ch_w[c]
-            bulk[nb] = c
-            nb += 1
-            continue
-        hrow = h[gi]
-        wrow = w[gi]
-        for gj in range(j0, j1):
-            v = hrow[gj] - srow[gj + off]
-            wv = wrow[gj]
-            hi = v > g_hi
-            khi += hi
-            w_hi += wv if hi else 0.0
-            z_hi = max(z_hi, v)
-            fmin_hi = min(fmin_hi, v if hi else np.inf)
-            band[kb] = v
-            band_w[kb] = wv
-            kb += (not hi) and v >= g_lo
-    if khi > n or khi + kb < n + 1:
-        res[5] = 1.0 if khi > n else -1.0
-        return False
-    # the largest F (first contact) may lie in a chunk counted whole: read those that can hold it
-    for k in range(nb):
-        c = bulk[k]
-        gi = ch_i[c]
-        srow = mirror[abs(gi - pi)]
-        j0 = ch_j0[c]
-        j1 = ch_j1[c]
-        if ch_hi[c] - srow[min(max(pj, j0), j1 - 1) + off] > z_hi:
-            hrow = h[gi]
-            for gj in range(j0, j1):
-                z_hi = max(z_hi, hrow[gj] - srow[gj + off])
-    scratch = band[kb : 2 * kb]
-    scratch[:] = band[:kb]
-    fn1 = _kth_largest_inplace(scratch, kb, n + 1 - khi)
-    cnt = khi
-    wsum = w_hi
-    fmin = fmin_hi
-    w_next = 0.0
-    need = -1
-    for c in range(kb):
-        v = band[c]
-        if v > fn1:
-            cnt += 1
-            wsum += band_w[c]
-            fmin = min(fmin, v)
-    # ties at the boundary: taken in raster order, like the reference's stable sort
-    need = n - cnt
-    for c in range(kb):
-        if band[c] == fn1:
-            if need > 0:
-                wsum += band_w[c]
-                need -= 1
-            else:
-                w_next = band_w[c]
-                break
-    if n > 0 and cnt >= n and fmin == fmin_hi:
-        # the n-th largest F lies above the band: the least F above it, chunks counted whole
-        # included (read those that can hold it)
-        for k in range(nb):
-            c = bulk[k]
-            gi = ch_i[c]
-            srow = mirror[abs(gi - pi)]
-            j0 = ch_j0[c]
-            j1 = ch_j1[c]
-            jf = j0 if pj - j0 > j1 - 1 - pj else j1 - 1
-            if ch_lo[c] - srow[jf + off] < fmin:
-                hrow = h[gi]
-                for gj in range(j0, j1):
-                    fmin = min(fmin, hrow[gj] - srow[gj + off])
-    z0 = z_hi
-    if n == 0 or cnt == 0:
-        z0 = fn1
-    fn = fn1 if (n == 0 or cnt < n) else fmin
-    res[0] = wsum
-    res[1] = z0
-    res[2] = fn
-    res[3] = fn1
-    res[4] = w_next
-    return True
