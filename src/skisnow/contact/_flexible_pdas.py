@@ -18,7 +18,7 @@ rigid-hull start spreads over costs ~50 ms. So the set is found on nested grids 
 its edges where the coarse pressure, extrapolated as a contact edge's p ∝ √distance, reaches
 zero: the finest grid then needs only the 2–4 steps that move the edges by a cell or two
 (measured on the shipped skis of version 2). The steps of a grid run on its candidate cells
-only (the carried set widened by two coarse cells: every cell on the coarsest grid) with the
+only (the carried set widened by a coarse cell: every cell on the coarsest grid) with the
 dense coupled block K_SS (compiled assembly, :mod:`skisnow.contact._flexible_kernel`), λ on S by
 one dense product, and compiled (:mod:`skisnow.contact._pdas_kernel`: the set's interior is
 factored once, the moving border through a small Schur complement); on the finest grid λ is then
@@ -57,9 +57,9 @@ _COARSEST = 64
 #: a cell off A enters only when its gap is below −this × tol × scale (no flip-flop on round-off)
 _ENTER = 1e-2
 #: the cells a finer grid's steps may use: its start set widened by this many cells each side
-#: (a coarse set is right to a coarse cell: _COARSEN fine cells); cells beyond that the
-#: whole-grid check finds penetrating are added with the same margin
-_MARGIN = 2 * _COARSEN
+#: (the prolonged edges are right to a fine cell or two; a coarse cell is _COARSEN fine cells);
+#: cells beyond that the whole-grid check finds penetrating are added with the same margin
+_MARGIN = _COARSEN
 #: the cells of a set farther than this from its edges are factored once (their block), the
 #: others (where the steps move the set) at every step: :mod:`skisnow.contact._pdas_kernel`
 _DEEP = _COARSEN
@@ -103,7 +103,8 @@ def _prolong_set(act: np.ndarray, p: np.ndarray | None, f: int) -> np.ndarray:
         return fine
     q = np.where(act, p, 0.0) ** 2
     m = act.size
-    for k in np.flatnonzero(act).tolist():
+    edge = act & ~(np.r_[act[1:], True] & np.r_[True, act[:-1]])  # a neighbour off the set
+    for k in np.flatnonzero(edge).tolist():
         for out, inner in ((k + 1, k - 1), (k - 1, k + 1)):  # a right edge, then a left one
             if not (0 <= out < m and 0 <= inner < m) or act[out] or not act[inner]:
                 continue
@@ -243,7 +244,6 @@ def multilevel_active_set(
         return Multilevel(None, None, None, None)
     act: np.ndarray | None = None
     p_coarse: np.ndarray | None = None
-    start: np.ndarray | None = None
     u_max = 0.0
     history: list[float] = []
     n_steps = 0
@@ -324,7 +324,11 @@ def multilevel_active_set(
             result = (p, g, float(a), float(b), n_steps, history, True, message, n_steps)
             return Multilevel(result, None, None, (u, w))
         if p is not None:
-            fine = (np.arange(n) + 0.5) / (n // m) - 0.5
-            start = np.interp(fine, np.arange(m), p) * _prolong_set(p > 0, p, n // m)
-        p_coarse = p
+            p_coarse = p
+    start = None
+    if p_coarse is not None:  # the finest solved grid's pressure, on the finest grid
+        f = n // p_coarse.size
+        fine = (np.arange(n) + 0.5) / f - 0.5
+        start = np.interp(fine, np.arange(p_coarse.size), p_coarse)
+        start *= _prolong_set(p_coarse > 0, p_coarse, f)
     return Multilevel(None, start, cand if m == n else None, None)
