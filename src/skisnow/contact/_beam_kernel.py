@@ -82,3 +82,28 @@ def half_generators(
         diag[i] = di * di * s0 - 2 * di * s1 + s2
         u[i] = di * s0 - s1
         v[i] = s2 - di * s1
+
+
+@numba.njit(cache=True, nogil=True)
+def boot_deflect_strided(
+    q: float,
+    half_len: float,
+    start: int,
+    step: int,
+    d: np.ndarray,
+    t: np.ndarray,
+    c: np.ndarray,
+    out: np.ndarray,
+) -> None:  # pragma: no cover - compiled
+    """The deflection of one half under the boot's uniform load q [N/m] over |t| < half_len:
+    the moment q (half_len − t)²/2 at the nodes, curvature c·M, summed as in
+    :func:`cantilever_apply` (the j-th station of the half is ``start + step·j`` of ``out``)."""
+    k0 = 0.0
+    k1 = 0.0
+    for i in range(d.size):
+        r = half_len - t[i]
+        if r > 0.0:
+            kappa = c[i] * (0.5 * q * r * r)
+            k0 += kappa
+            k1 += kappa * t[i]
+        out[start + step * i] = d[i] * k0 - k1

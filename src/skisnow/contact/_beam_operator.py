@@ -162,12 +162,17 @@ class CantileverCompliance:
         w = np.zeros(self.x.size)
         if boot_length <= 0.0:
             return w
+        from skisnow.contact._beam_kernel import boot_deflect_strided
+
         q = -force / boot_length
         half_len = 0.5 * boot_length
-        for half in (self.rear, self.front):
-            if half.index.size:
-                moment = 0.5 * q * np.maximum(half_len - half.t, 0.0) ** 2
-                w[half.index] = half.deflect(moment)
+        split = self.rear.index.size
+        if split:
+            boot_deflect_strided(q, half_len, split - 1, -1, self.rear.d, self.rear.t,
+                                 self.rear.c, w)  # fmt: skip
+        if split < w.size:
+            boot_deflect_strided(q, half_len, split, 1, self.front.d, self.front.t,
+                                 self.front.c, w)  # fmt: skip
         return w
 
 
