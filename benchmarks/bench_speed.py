@@ -311,6 +311,18 @@ def row_sweep() -> None:
             f"    in process: compute {run.compute_time:.2f} s, CPU {cpu:.2f} s = "
             f"{1e3 * cpu / 2520:.2f} ms per solve; an idle 2-core machine needs ~{cpu / 2:.2f} s"
         )
+        # the chunks alone (what the workers compute; the beam profiles cached after the first)
+        from skisnow.sweep import contact_chunk
+
+        contact_chunk(spec, "skate", -0.120, float(spec.snow_moduli[0]))
+        c0 = time.process_time()
+        for e in spec.snow_moduli:
+            contact_chunk(spec, "skate", -0.120, float(e))
+        chunks = time.process_time() - c0
+        print(
+            f"    the 20 chunks alone: CPU {chunks:.2f} s = {1e3 * chunks / 2520:.2f} ms per "
+            f"point; on 2 idle cores ~{chunks / 2:.2f} s plus the client's profiles"
+        )
     record(
         "Figure 8/9 sweep, 2520 solves",
         f"{times[2]:.2f} s on 2 workers, {times[1]:.2f} s on 1 ({times[1] / times[2]:.2f}x)",
