@@ -203,8 +203,8 @@ def bearing_area(
     hardness: float,
     shape: str = "sphere",
     stride: int = 1,
-    block: int | tuple[int, int] = (4, 4),
-    superblock: int | tuple[int, int] = (4, 4),
+    block: int | tuple[int, int] = (8, 8),
+    superblock: int | tuple[int, int] = (2, 2),
 ) -> BearingMap:
     """Bearing model of one grain size over the raster (eq. 5–9; see the module docstring).
 

@@ -8,7 +8,7 @@ numba kernel; :func:`skisnow.micro.bearing_area` is the thin, validated entry po
 
 Algorithm (exact; no approximation beyond the discretisation above). Only ⌊N*⌋ + 1 pixels per
 position matter — a few hundred for D = 450–750 µm at 1 µm pixels and 20 kPa — so the
-positions are processed in tiles (default 4 × 4) grouped in super-tiles (default 4 × 4 tiles)
+positions are processed in tiles (default 8 × 8) grouped in super-tiles (default 2 × 2 tiles)
 and everything else is pruned by bounds:
 
 1. Any pixel with F(x) < τ (τ = (⌊N*⌋+1)-th largest F of that position) is irrelevant.
