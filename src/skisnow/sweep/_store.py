@@ -446,7 +446,14 @@ def _write_all(writes: list[tuple[Any, tuple[Any, ...], np.ndarray]]) -> None:
     async def gather() -> None:
         import asyncio
 
-        await asyncio.gather(*(a._async_array.setitem(i, v) for a, i, v in writes))
+        # every write ends (done or failed) before this returns: a failed write must leave no
+        # other write of the chunk running on Zarr's loop after the error is raised
+        results = await asyncio.gather(
+            *(a._async_array.setitem(i, v) for a, i, v in writes), return_exceptions=True
+        )
+        for result in results:
+            if isinstance(result, BaseException):
+                raise result
 
     sync(gather())
 
