@@ -43,6 +43,20 @@ SPEC = SweepSpec(
 )  # fmt: skip
 
 
+def _drain_zarr_loop() -> None:
+    """Wait until every task on Zarr's I/O loop has ended (the writes a gather left running
+    after the kill's exception)."""
+    import asyncio
+
+    from zarr.core.sync import _get_loop
+
+    async def wait() -> None:
+        others = [t for t in asyncio.all_tasks() if t is not asyncio.current_task()]
+        await asyncio.gather(*others, return_exceptions=True)
+
+    asyncio.run_coroutine_threadsafe(wait(), _get_loop()).result(timeout=60)
+
+
 @pytest.fixture
 def kill_after(monkeypatch):
     """``kill_after(k)`` arms the hook: the k-th file write of the store completes, then
@@ -62,6 +76,8 @@ def kill_after(monkeypatch):
     monkeypatch.setattr(zarr.storage.LocalStore, "_set", _set)
 
     def arm(k: int | None) -> dict:
+        if state["dead"]:  # a SIGKILL stops every write in flight: let the killed run's
+            _drain_zarr_loop()  # remaining writes fail (dead) before the next run may write
         state.update(n=0, k=k, dead=False)
         return state
 
