@@ -35,6 +35,7 @@ the code before issue 29 (same public API), so the lead can run it on both check
 from __future__ import annotations
 
 import argparse
+import contextlib
 import os
 import statistics
 import time
@@ -335,7 +336,10 @@ def row_explore() -> None:
     from skisnow.explore import ExplorerGrid, explorer_dataset, render_explorer
     from skisnow.ski import camber_profile
 
-    camber_profile("classic", mass=60.0, load_position=-0.12, source="network")  # JAX warm-up
+    # JAX warm-up, where the optional 'network' extra is installed (the page's default profiles
+    # come from the beam: JAX is not needed)
+    with contextlib.suppress(ImportError):
+        camber_profile("classic", mass=60.0, load_position=-0.12, source="network")
     # workers=0: in this process (the library's default); None: a local cluster of one worker
     # process per core (the default of `skisnow explore`), its start-up included
     for workers, label in ((0, "in-process"), (None, "1 worker per core, as `skisnow explore`")):
