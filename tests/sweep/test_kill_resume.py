@@ -24,9 +24,10 @@ from skisnow.cli import main
 from skisnow.sweep import SweepSpec, open_sweep, run_sweep
 from skisnow.sweep._store import done_chunks
 
-# 6 masses × 20 moduli = 20 chunks of 6 solves each
+# 25 masses × 20 moduli = 20 chunks of 25 solves each (with 6 solves a chunk the faster solver
+# and store finished all 20 chunks between the first one marked done and the Ctrl-C, at load 10)
 ARGS = [
-    "sweep", "--ski", "skate", "--mass-kg", "5:55:10", "--load-position-mm", "-120",
+    "sweep", "--ski", "skate", "--mass-kg", "5:125:5", "--load-position-mm", "-120",
     "--snow-modulus-mpa", "20:400:20", "--points", "512", "--profile-source", "beam",
 ]  # fmt: skip
 CMD = [sys.executable, "-c", "from skisnow.cli import main; raise SystemExit(main())"]
@@ -35,7 +36,7 @@ CMD = [sys.executable, "-c", "from skisnow.cli import main; raise SystemExit(mai
 def _spec() -> SweepSpec:
     return SweepSpec(
         skis=("skate",),
-        masses=np.arange(5.0, 56.0, 10.0),
+        masses=np.arange(5.0, 126.0, 5.0),
         load_positions=(-0.12,),
         snow_moduli=np.arange(20.0, 401.0, 20.0) * 1e6,
         n_points=512,
