@@ -131,7 +131,7 @@
     for (let t = Math.ceil(a / m) * m; t <= b + 1e-9 * m; t += m) out.push(t);
     return out;
   }
-  function fmt(v) { return Math.abs(v) >= 100 || v === 0 ? v.toFixed(0) : v.toPrecision(2); }
+  function fmt(v) { return Math.abs(v) >= 100 || v === 0 ? v.toFixed(0) : Number(v.toPrecision(2)).toString(); }
   function fmt3(v) { return Math.abs(v) >= 1000 ? v.toFixed(0) : Number(v.toPrecision(3)).toString(); }
   function line(ctx, xs, ys, sx, sy, color, width) {
     ctx.strokeStyle = color; ctx.lineWidth = width; ctx.beginPath();
