@@ -19,6 +19,7 @@ from skisnow.calibrate._fit import fit, report
 from skisnow.calibrate._params import DENSE_KNOTS, KNOTS, record_vector, shipped_vector
 from skisnow.calibrate._residuals import FitOptions
 from skisnow.calibrate._shipped import write_shipped
+from skisnow.paper import REPRODUCTION_TOLERANCES
 from skisnow.ski import shipped_ski_path
 
 __all__ = ["CalibrationRun", "run_calibration"]
@@ -59,6 +60,11 @@ class CalibrationRun:
         Classic: the largest gap left in the kick zone at twice the body weight [mm]; None: off.
     write_shipped, ski_out
         Write the ski of this record as the shipped ski file (or to ``ski_out``) instead.
+    reproduction
+        Fit a reproduction ski (issue 30): the captions alone (no plausibility terms), in
+        units of :data:`skisnow.paper.REPRODUCTION_TOLERANCES` (10 %, 10 %, 3 points, the
+        shares Figures 4 and 7 imply held too); records ``calibration_<ski>_k22<tag>.json``,
+        written as the ski ``<ski>-k22``.
     """
 
     skis: tuple[str, ...] = ()
@@ -84,17 +90,19 @@ class CalibrationRun:
     kick_gap_max: float | None = None
     write_shipped: Path | None = None
     ski_out: Path | None = None
+    reproduction: bool = False
 
 
 def run_calibration(run: CalibrationRun) -> list[Path]:
     """Run the calibration as ``run`` says (module docstring); return the records written."""
     if run.write_shipped is not None:
         doc = json.loads(run.write_shipped.read_text())
-        print(write_shipped(doc, run.ski_out or shipped_ski_path(doc["ski"])))
+        name = doc["ski"] + ("-k22" if doc.get("reproduction") else "")
+        print(write_shipped(doc, run.ski_out or shipped_ski_path(name)))
         return []
     run.out.mkdir(parents=True, exist_ok=True)
     opts = FitOptions(
-        plausibility=not run.caption_only,
+        plausibility=not (run.caption_only or run.reproduction),
         hinge_weight=run.hinge_weight,
         topology_weight=run.topology_weight,
         ei_shape_weight=run.ei_shape_weight,
@@ -109,6 +117,8 @@ def run_calibration(run: CalibrationRun) -> list[Path]:
         opts = replace(opts, k_range_n_per_mm=(run.k_range[0], run.k_range[1]))
     if run.kick_gap_max is not None:
         opts = replace(opts, kick_gap_max_mm=run.kick_gap_max)
+    if run.reproduction:
+        opts = replace(opts, tolerances=REPRODUCTION_TOLERANCES)
     written = []
     saved = dict(KNOTS)
     if run.knots == "dense":
@@ -135,7 +145,14 @@ def run_calibration(run: CalibrationRun) -> list[Path]:
                 "seed": run.seed,
                 "generations": run.generations,
                 "popsize": run.popsize,
-                "plausibility_terms": not run.caption_only,
+                "plausibility_terms": opts.plausibility,
+                "reproduction": run.reproduction,
+                "tolerances": {
+                    "length": opts.tolerances.length,
+                    "pressure": opts.tolerances.pressure,
+                    "share": opts.tolerances.share,
+                    "implied_shares": opts.tolerances.implied_shares,
+                },
                 "hinge_weight": run.hinge_weight,
                 "topology_weight": run.topology_weight,
                 "ei_shape_weight": run.ei_shape_weight,
@@ -153,7 +170,9 @@ def run_calibration(run: CalibrationRun) -> list[Path]:
                 "generations_run": result["generations_run"],
                 "seconds": round(result["seconds"], 1),
             }
-            tag = ("_caption_only" if run.caption_only else "") + run.tag
+            tag = (
+                "_k22" if run.reproduction else "_caption_only" if run.caption_only else ""
+            ) + run.tag
             path = run.out / f"calibration_{kind}{tag}.json"
             path.write_text(json.dumps(doc, indent=1))
             seconds, evaluations = result["seconds"], result["evaluations"]

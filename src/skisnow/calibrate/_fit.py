@@ -118,7 +118,7 @@ def report(kind: str, v: np.ndarray, opts: FitOptions | None = None) -> dict:
     opts = FitOptions() if opts is None else opts
     ski = make_ski(kind, v)
     solved: list = []
-    _, rows = caption_residuals(ski, solved)
+    _, rows = caption_residuals(ski, solved, tolerances=opts.tolerances)
     prac = plausibility(ski, kick_gap=opts.kick_gap_max_mm is not None)
     topo = topology(ski, solved)
     hinges = plausibility_residuals(kind, prac, opts)
@@ -142,7 +142,7 @@ def report(kind: str, v: np.ndarray, opts: FitOptions | None = None) -> dict:
     print(f"hinges {[round(h, 3) for h in hinges]} (all hold: {not any(hinges)})")
     print(f"EI shape hinges {[round(h, 3) for h in shape]} (unimodal, steps <= {EI_STEP_MAX}x)")
     print("topology: " + ", ".join(f"{k}={v:.3g}" for k, v in topo.items()))
-    caption_misfit = float(np.sum(np.square(caption_residuals(ski)[0])))
+    caption_misfit = float(np.sum(np.square(caption_residuals(ski, tolerances=opts.tolerances)[0])))
     print(f"caption misfit {caption_misfit:.3f}, all within tolerance: {all(r.ok for r in rows)}")
     return {
         "ski": kind,

@@ -1,7 +1,9 @@
 """The calibration's residuals: the captions, the practitioners' limits, topology, EI shape.
 
-In units of the tolerances of :data:`skisnow.paper.TOLERANCES`: log(length ratio)/log 1.2,
-log(pressure ratio)/log 1.25 and (share difference)/0.05, plus :data:`PATCH_PENALTY` for every
+In units of the tolerances of the fit (:data:`skisnow.paper.TOLERANCES` for the plausible skis:
+log(length ratio)/log 1.2, log(pressure ratio)/log 1.25 and (share difference)/0.05;
+:data:`skisnow.paper.REPRODUCTION_TOLERANCES` for the reproduction skis: 10 %, 10 % and 3 points,
+the shares Figures 4 and 7 imply included), plus :data:`PATCH_PENALTY` for every
 wrong patch count and every zone the paper does not have (:func:`caption_residuals`); hinge
 terms on the practitioners' numbers (:func:`plausibility`, :func:`hinge_limits`), the paper's
 load topology (:func:`topology_residuals`) and the shape of EI(x)
@@ -18,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from skisnow.calibrate._params import BODY, KNOTS, POS, make_ski
-from skisnow.paper import CAPTIONS, TOLERANCES, compare_case, solve_caption_case
+from skisnow.paper import CAPTIONS, TOLERANCES, Tolerances, compare_case, solve_caption_case
 from skisnow.ski import SPLINE_KNOTS, Ski, ski_stiffness, solve_beam, wax_pocket_length
 
 __all__ = [
@@ -119,6 +121,10 @@ class FitOptions:
     kick_gap_max_mm
         ``--kick-gap-max``: classic only, a hinge on the largest gap left in the kick zone at
         twice the body weight at -80 mm (``kick_gap_2x_mm``), 0.01 mm a unit; None: off.
+    tolerances
+        The units of the caption residuals (``--reproduction``:
+        :data:`skisnow.paper.REPRODUCTION_TOLERANCES`, the implied shares of Figures 4 and 7
+        held too).
     """
 
     plausibility: bool = True
@@ -131,6 +137,7 @@ class FitOptions:
     front_pressure_growth_min: float = 1.2
     share_change: bool = False
     kick_gap_max_mm: float | None = None
+    tolerances: Tolerances = TOLERANCES
 
 
 def hinge_limits(
@@ -264,13 +271,20 @@ def ei_shape_residuals(kind: str, v: np.ndarray) -> list[float]:
 
 
 def caption_residuals(
-    ski: Ski, solved: list | None = None, layout: list | None = None
+    ski: Ski,
+    solved: list | None = None,
+    layout: list | None = None,
+    *,
+    tolerances: Tolerances = TOLERANCES,
 ) -> tuple[list[float], list]:
     """Residuals in tolerance units, a fixed number per ski (for the least-squares polish).
 
     ``solved``, if given, receives (case, zones) of every caption case of the ski; ``layout``,
-    if given, (case label, zone name, slice of the zone's residuals) of every zone.
+    if given, (case label, zone name, slice of the zone's residuals) of every zone. With
+    ``tolerances.implied_shares`` a zone of Figures 4 and 7 has a share residual against the
+    share its caption implies (:meth:`skisnow.paper.CaptionCase.shares`).
     """
+    tol = tolerances
     res: list[float] = []
     rows = []
     starts: list[tuple[str, str, int]] = []  # (case label, zone, first residual) of each zone
@@ -280,8 +294,9 @@ def caption_residuals(
         zones = solve_caption_case(case, ski)
         if solved is not None:
             solved.append((case, zones))
-        rows.extend(compare_case(case, zones))
+        rows.extend(compare_case(case, zones, tolerances=tol))
         stated = {z.zone: z for z in case.zones}
+        shares = case.shares()
         for name in ("rear", "middle", "front"):
             got, paper = zones[name], stated.get(name)
             starts.append((case.label, name, len(res)))
@@ -290,10 +305,11 @@ def caption_residuals(
                 continue
             g_len = max(got.length, 1e-3)
             g_p = got.mean_pressure if math.isfinite(got.mean_pressure) else 1e6
-            res.append(math.log(g_len / paper.length) / math.log(1 + TOLERANCES.length))
-            res.append(math.log(g_p / paper.mean_pressure) / math.log(1 + TOLERANCES.pressure))
-            if paper.load_share is not None:
-                res.append((got.load_share - paper.load_share) / TOLERANCES.share)
+            res.append(math.log(g_len / paper.length) / math.log(1 + tol.length))
+            res.append(math.log(g_p / paper.mean_pressure) / math.log(1 + tol.pressure))
+            share, implied = shares[name]
+            if not implied or tol.implied_shares:
+                res.append((got.load_share - share) / tol.share)
             want = paper.patches if paper.patches is not None else 1
             if paper.patches is not None or got.patches == 0:
                 res.append(PATCH_PENALTY * min(abs(got.patches - want), 2))
@@ -314,7 +330,7 @@ def residuals(kind: str, v: np.ndarray, opts: FitOptions, n_res: int = 1) -> np.
     try:
         ski = make_ski(kind, v)
         solved: list = []
-        res, _ = caption_residuals(ski, solved)
+        res, _ = caption_residuals(ski, solved, tolerances=opts.tolerances)
         if opts.plausibility:
             w = opts.hinge_weight
             res += [

@@ -144,12 +144,20 @@ def calibrate(
             "with --ski FILE before it ships).",
         ),
     ] = None,
+    reproduction: Annotated[
+        bool,
+        typer.Option(
+            "--reproduction",
+            help="Fit a reproduction ski (<ski>-k22): the captions alone, within 10 % lengths "
+            "and mean pressures, 3 points load shares (the shares Figs. 4 and 7 imply too).",
+        ),
+    ] = False,
 ) -> None:
     """Calibrate the shipped skis on the captions of Kalliorinne et al. (2023), Figs. 4-7.
 
     Differential evolution, then a least-squares polish, of a spline ski against the caption
     numbers through the paper's pipeline, with hinges on the practitioners' numbers; writes
-    OUT/calibration_<ski>[_caption_only]<tag>.json. Takes minutes to hours.
+    OUT/calibration_<ski>[_caption_only|_k22]<tag>.json. Takes minutes to hours.
     """
     from skisnow.calibrate import CalibrationRun, run_calibration
 
@@ -167,6 +175,6 @@ def calibrate(
             bench_topology=bench_topology, findings=findings,
             front_pressure_growth_min=front_pressure_growth_min, polish_starts=polish_starts,
             tag=tag, knots=knots, k_range=k_range, sigma=sigma, kick_gap_max=kick_gap_max,
-            write_shipped=write_shipped, ski_out=ski_out,
+            write_shipped=write_shipped, ski_out=ski_out, reproduction=reproduction,
         )
     )  # fmt: skip

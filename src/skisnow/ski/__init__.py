@@ -62,7 +62,13 @@ from skisnow.ski._metrics import (
     wax_pocket,
     wax_pocket_length,
 )
-from skisnow.ski._registry import SHIPPED_SKIS, get_ski, shipped_ski_path
+from skisnow.ski._registry import (
+    PLAUSIBLE_SKIS,
+    REPRODUCTION_SKIS,
+    SHIPPED_SKIS,
+    get_ski,
+    shipped_ski_path,
+)
 from skisnow.ski._shipped import SHIPPED_SOURCES
 from skisnow.ski._skifile import (
     SKI_FILE_FORMAT,
@@ -115,6 +121,8 @@ __all__ = [
     "DEFAULT_N_ELEMENTS",
     "GAUSS4_W",
     "GAUSS4_X",
+    "PLAUSIBLE_SKIS",
+    "REPRODUCTION_SKIS",
     "SHIPPED_SKIS",
     "SHIPPED_SOURCES",
     "SKI_FILE_FORMAT",

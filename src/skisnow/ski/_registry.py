@@ -1,7 +1,11 @@
 """The skis by name or file: the shipped skis' names and files, :func:`get_ski`.
 
-The shipped skis (``classic``, ``skate``) are ski files, ``skisnow/ski/data/<name>.json``
-(:mod:`skisnow.ski._skifile`); :func:`get_ski` returns one of them by name, or a ski read from
+The shipped skis are ski files, ``skisnow/ski/data/<name>.json`` (:mod:`skisnow.ski._skifile`):
+the plausible skis ``classic`` and ``skate`` (:data:`PLAUSIBLE_SKIS`: fitted to the captions of
+Kalliorinne et al. (2023) under the practitioners' limits, what a technician should use) and the
+reproduction skis ``classic-k22`` and ``skate-k22`` (:data:`REPRODUCTION_SKIS`: fitted to the
+captions alone, to reproduce the paper's Figures 4-9; their provenance says where they leave
+what is reported for real skis). :func:`get_ski` returns one of them by name, or a ski read from
 any ski file, cached per (path, modification time, size).
 """
 
@@ -15,10 +19,16 @@ from skisnow._errors import InputError
 from skisnow.ski._skifile import read_ski
 from skisnow.ski._skis import Ski
 
-__all__ = ["SHIPPED_SKIS", "get_ski", "shipped_ski_path"]
+__all__ = ["PLAUSIBLE_SKIS", "REPRODUCTION_SKIS", "SHIPPED_SKIS", "get_ski", "shipped_ski_path"]
 
+#: The plausible skis: fitted to the paper's captions under the practitioners' limits.
+PLAUSIBLE_SKIS: tuple[str, ...] = ("classic", "skate")
+#: The reproduction skis of the paper (Kalliorinne et al., cited as 2023 in skisnow; "k22":
+#: Lubricants 10(11), 279, published 2022): fitted to the captions of its Figures 4-7 alone,
+#: NOT plausible skis (issue 30).
+REPRODUCTION_SKIS: tuple[str, ...] = ("classic-k22", "skate-k22")
 #: Names of the skis shipped with skisnow (see :func:`get_ski`).
-SHIPPED_SKIS: tuple[str, ...] = ("classic", "skate")
+SHIPPED_SKIS: tuple[str, ...] = PLAUSIBLE_SKIS + REPRODUCTION_SKIS
 
 
 def shipped_ski_path(name: str) -> Path:
