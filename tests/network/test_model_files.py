@@ -109,7 +109,7 @@ def test_loaded_numbers_are_checked_even_when_re_signed(toy_network, tmp_path, k
         load_network(tmp_path / "m")
 
 
-@pytest.mark.parametrize("ski", ["classic", "skate"])
+@pytest.mark.parametrize("ski", ["classic", "skate", "classic-k22", "skate-k22"])
 def test_shipped_networks_load(ski):
     from skisnow.network import shipped_network
     from skisnow.ski import get_ski
@@ -124,7 +124,7 @@ def test_shipped_networks_load(ski):
     assert net.metadata["validation_errors"]["mean_um"] < 50
 
 
-@pytest.mark.parametrize("ski", ["classic", "skate"])
+@pytest.mark.parametrize("ski", ["classic", "skate", "classic-k22", "skate-k22"])
 def test_shipped_networks_match_the_current_beam(ski):
     """The shipped network must describe the shipped ski as it is now: if someone changes the
     ski (EI, z0, geometry) without retraining (`benchmarks/bench_network.py --retrain --save`),

@@ -7,7 +7,7 @@ import pytest
 
 from skisnow import InputError
 from skisnow.bench import closing_load
-from skisnow.ski import SHIPPED_SKIS, Ski, get_ski, solve_beam
+from skisnow.ski import PLAUSIBLE_SKIS, REPRODUCTION_SKIS, SHIPPED_SKIS, Ski, get_ski, solve_beam
 
 BODY = 65.0  # kg, the issue's ~65 kg skier
 POS = -0.080  # m, the practitioners' 80 mm behind the balance point
@@ -18,13 +18,18 @@ def _h0(name: str, mass: float, pos: float) -> float:
 
 
 def test_shipped_names_and_lookup() -> None:
-    assert SHIPPED_SKIS == ("classic", "skate")
+    assert PLAUSIBLE_SKIS == ("classic", "skate")
+    assert REPRODUCTION_SKIS == ("classic-k22", "skate-k22")
+    assert SHIPPED_SKIS == PLAUSIBLE_SKIS + REPRODUCTION_SKIS
     for name in SHIPPED_SKIS:
         ski = get_ski(name)
-        assert ski.name == name and ski.kind == name
+        assert ski.name == name and ski.kind == name.removesuffix("-k22")
         assert ski.x_tail < 0 < ski.x_tip
         assert ski.width == pytest.approx(0.044)
         assert "Breitschädel" in ski.description
+    for name in REPRODUCTION_SKIS:  # labelled so that nobody mistakes them for real skis
+        assert "REPRODUCTION" in get_ski(name).description
+        assert "NOT a plausible ski" in get_ski(name).description
     with pytest.raises(InputError, match="classic, skate"):
         get_ski("alpine")
 

@@ -15,7 +15,7 @@ __all__ = ["run_contact_demo", "run_ski_demo"]
 
 
 def run_ski_demo(out: Path, *, progress: bool = True) -> dict[str, Any]:
-    """Bench both shipped skis, compute their metrics and draw their camber profiles into ``out``.
+    """Bench both plausible skis, compute their metrics and draw their camber profiles into ``out``.
 
     Returns a document with the metrics and the files written.
     """
@@ -23,24 +23,24 @@ def run_ski_demo(out: Path, *, progress: bool = True) -> dict[str, Any]:
     from skisnow.cli._render import progress_bar
     from skisnow.cli._ski import metrics_documents
     from skisnow.plot import plot_camber_profiles, save_figure
-    from skisnow.ski import SHIPPED_SKIS
+    from skisnow.ski import PLAUSIBLE_SKIS
 
     out.mkdir(parents=True, exist_ok=True)
     files: list[str] = []
     docs = []
-    for name in SHIPPED_SKIS:
+    for name in PLAUSIBLE_SKIS:
         with progress_bar(f"bench {name}", disable=not progress) as bar:
             data = run_bench(name, progress=bar)
         path = write_bench(data, out / f"bench_{name}.csv")  # CSV: no optional dependency
         files.append(str(path))
         docs.extend(metrics_documents(str(path), body_mass_kg=65.0, load_position_mm=-80.0))
-    fig = plot_camber_profiles(SHIPPED_SKIS)
+    fig = plot_camber_profiles(PLAUSIBLE_SKIS)
     files.extend(str(p) for p in save_figure(fig, out / "camber_profiles", formats=("png",)))
     return {"output_dir": str(out), "files": files, "metrics": docs}
 
 
 def network_or_beam() -> tuple[str, str]:
-    """``('network', '')`` when both shipped skis have their pretrained network, else
+    """``('network', '')`` when both plausible skis have their pretrained network, else
     ``('beam', reason)``.
 
     Only a network that is not shipped falls back to the beam; a shipped model file that is
@@ -48,10 +48,10 @@ def network_or_beam() -> tuple[str, str]:
     (a broken installation must not pass silently as a beam demo).
     """
     from skisnow.network import shipped_network
-    from skisnow.ski import SHIPPED_SKIS
+    from skisnow.ski import PLAUSIBLE_SKIS
 
     try:
-        for name in SHIPPED_SKIS:
+        for name in PLAUSIBLE_SKIS:
             shipped_network(name)
     except FileFormatError:
         raise
@@ -107,7 +107,7 @@ def run_contact_demo(
     from skisnow.pipeline import solve_case
     from skisnow.plot import plot_contact, save_figure, sweep_figures
     from skisnow.report import study_ski, write_report
-    from skisnow.ski import SHIPPED_SKIS
+    from skisnow.ski import PLAUSIBLE_SKIS
     from skisnow.sweep import SweepSpec, open_sweep, run_sweep
 
     png = ("png",)
@@ -138,7 +138,7 @@ def run_contact_demo(
         )  # fmt: skip
 
     spec = SweepSpec(
-        skis=tuple(SHIPPED_SKIS),
+        skis=tuple(PLAUSIBLE_SKIS),
         masses=np.arange(5.0, 131.0, 5.0) if masses is None else masses,
         load_positions=(-0.120,),
         snow_moduli=np.arange(20.0, 401.0, 20.0) * 1e6 if snow_moduli is None else snow_moduli,
