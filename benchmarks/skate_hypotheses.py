@@ -126,15 +126,12 @@ def _k(ski) -> float:  # type: ignore[no-untyped-def]
 #: Networks of (b): widths and training steps that put their mean error (on the 25 off-grid
 #: cases of benchmarks/bench_network.py) near the paper's level; seeded.
 PAPER_ERROR_NETWORKS = {
-    "small network (widths 3,4,4,4,3,3; 300 Adam, 20 LM steps)": dict(
-        architecture="3,4,4,4,3,3", adam_steps=300, lm_steps=20, lm_points=3000
+    "shipped widths; 600 Adam, 5 LM steps": dict(adam_steps=600, lm_steps=5, patience=1000),
+    "shipped widths; 600 Adam, 20 LM steps": dict(adam_steps=600, lm_steps=20, patience=1000),
+    "widths 4,8,8,8,6,6; 600 Adam, 60 LM steps": dict(
+        architecture="4,8,8,8,6,6", adam_steps=600, lm_steps=60, patience=1000
     ),
-    "short training (widths 6,16,16,16,12,12; 200 Adam, no LM)": dict(
-        architecture="6,16,16,16,12,12", adam_steps=200, lm_steps=0
-    ),
-    "tiny network (widths 2,3,3,3,2,2; 200 Adam, 10 LM steps)": dict(
-        architecture="2,3,3,3,2,2", adam_steps=200, lm_steps=10, lm_points=2000
-    ),
+    "short training: shipped widths, 200 Adam, no LM": dict(adam_steps=200, lm_steps=0),
 }
 
 
