@@ -23,7 +23,9 @@ def _json(capsys: pytest.CaptureFixture[str], argv: list[str]) -> dict:
 def test_skis_json(capsys: pytest.CaptureFixture[str]) -> None:
     doc = _json(capsys, ["skis", "--json"])
     names = [s["ski"] for s in doc["skis"]]
-    assert names == ["classic", "skate"]
+    assert names == ["classic", "skate", "classic-k22", "skate-k22"]
+    # the reproduction skis (issue 30) are labelled as such in the list
+    assert [s["reproduction_ski"] for s in doc["skis"]] == ["no", "no", "YES", "YES"]
     classic = doc["skis"][0]
     # the CLI converts the ski's kick zone to mm, whatever the shipped numbers are
     kick = get_ski("classic").kick_zone
@@ -137,4 +139,9 @@ def test_subprocess_smoke() -> None:
         check=False,
     )
     assert proc.returncode == 0, proc.stderr
-    assert [s["ski"] for s in json.loads(proc.stdout)["skis"]] == ["classic", "skate"]
+    assert [s["ski"] for s in json.loads(proc.stdout)["skis"]] == [
+        "classic",
+        "skate",
+        "classic-k22",
+        "skate-k22",
+    ]

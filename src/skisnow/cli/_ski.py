@@ -26,7 +26,7 @@ def resolve_profile_source(option: str, skis: list[str]) -> str:
 def ski_summary_rows(skis: list[str] | None = None) -> list[dict[str, Any]]:
     """Key numbers of skis (default: the shipped ones) in field units (``skis`` and ``demo``)."""
     from skisnow.bench import closing_load
-    from skisnow.ski import SHIPPED_SKIS, get_ski
+    from skisnow.ski import REPRODUCTION_SKIS, SHIPPED_SKIS, get_ski
 
     rows = []
     for name in SHIPPED_SKIS if skis is None else skis:
@@ -35,6 +35,8 @@ def ski_summary_rows(skis: list[str] | None = None) -> list[dict[str, Any]]:
         rows.append(
             {
                 **ski.summary_mm(),
+                # the reproduction skis match the paper's captions, not real skis (issue 30)
+                "reproduction_ski": "YES" if name in REPRODUCTION_SKIS else "no",
                 "kick_zone_mm": None if kz is None else [kz[0] * 1e3, kz[1] * 1e3],
                 "free_camber_at_balance_point_mm": float(ski.free_camber(0.0)) * 1e3,
                 "stiffness_at_balance_point_n_m2": float(ski.stiffness(0.0)),

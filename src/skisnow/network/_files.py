@@ -395,10 +395,11 @@ def load_network(path: str | Path) -> CamberNetwork:
 
 @functools.cache
 def shipped_network(ski_name: str) -> CamberNetwork:
-    """The pretrained network of a shipped ski (``'classic'`` or ``'skate'``), loaded once.
+    """The pretrained network of a shipped ski (:data:`skisnow.ski.SHIPPED_SKIS`), loaded once.
 
     The files are ``skisnow/network/models/<name>.npz|.json``, trained on the virtual bench of that
-    ski (``benchmarks/bench_network.py --retrain`` regenerates them).
+    ski (``benchmarks/bench_network.py --retrain --save`` regenerates them; the training bench
+    and settings are in its ``SHIPPED_SETTINGS`` and in each file's metadata).
 
     Raises
     ------
