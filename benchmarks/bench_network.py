@@ -171,7 +171,7 @@ def main() -> None:
         for label, est in (
             ("network", pred),
             ("interpolation, paper's plan 5 kg × 40 mm", base),
-            ("interpolation, training bench", np.array(dense)),
+            ("interpolation, dense bench 1 kg × 13.3 mm", np.array(dense)),
         ):
             s = error_stats(est - truth, truth)
             rows.append(

@@ -1,5 +1,5 @@
 """The twelve Figure 8–9 statements of Kalliorinne et al. (2023), §4, read on a ski's maps.
-=====================================================================================
+========================================================================================
 
 The ski's rear and front maps (apparent contact area, mean pressure, patches, Breitschädel
 area) over load 5–130 kg in 1 kg steps at x_m = -120 mm and snow 20–400 MPa in 20 MPa steps

@@ -111,7 +111,7 @@ def captions(
         tol = tolerances_of(get_ski(name))
         order = " / ".join(["paper", *routes])
         print_table(
-            f"{name}: Kalliorinne et al. (2023) captions, each cell {order}\n"
+            f"{name}: Kalliorinne et al. (2023) captions, each cell {order} "
             "(fitted numbers: a calibration, not a validation; (share) = implied by "
             "length × pressure)",
             ["case", "zone", "length [mm]", "mean p [kPa]", "share [%]", "patches",

@@ -236,13 +236,13 @@ def _grade(hits: Sequence[bool], number_ok: bool = True) -> str:
     return "partly" if any(hits) else "no"
 
 
-def _span(values: Sequence[float], fmt: str = ".0f") -> str:
+def _span(values: Sequence[float], fmt: str = ".0f", unit: str = "") -> str:
     finite = [v for v in values if np.isfinite(v)]
     missing = len(values) - len(finite)
     if not finite:
         return "none"
     lo, hi = format(min(finite), fmt), format(max(finite), fmt)
-    text = lo if lo == hi else f"{lo}-{hi}"
+    text = (lo if lo == hi else f"{lo}-{hi}") + unit
     return text + (f" ({missing} of {len(values)} none)" if missing else "")
 
 
@@ -276,7 +276,8 @@ def _rear_local_max(mp: ZoneMaps) -> tuple[str, str]:
     stiff, peaks, mins = _rear_peaks(mp)
     hits = [bool(np.isfinite(p) and np.isfinite(q)) for p, q in zip(peaks, mins, strict=True)]
     return _grade(hits), (
-        f"{_mod(mp.moduli_mpa, stiff)}: maxima at {_span(peaks)} kg, minima at {_span(mins)} kg"
+        f"{_mod(mp.moduli_mpa, stiff)}: maxima at {_span(peaks, unit=' kg')}, "
+        f"minima at {_span(mins, unit=' kg')}"
     )
 
 
@@ -313,7 +314,7 @@ def _front_local_max(mp: ZoneMaps) -> tuple[str, str]:
     hits = [bool(np.isfinite(p)) for p in peaks]
     value_ok = 40.0 <= a400 <= 60.0
     return _grade(hits, value_ok), (
-        f"{_mod(mp.moduli_mpa, sel)}: maxima at {_span(peaks)} kg; {a400:.1f} cm² at "
+        f"{_mod(mp.moduli_mpa, sel)}: maxima at {_span(peaks, unit=' kg')}; {a400:.1f} cm² at "
         f"{mp.moduli_mpa[j]:g} MPa (25-35 kg)"
     )
 
@@ -342,7 +343,7 @@ def _front_split(mp: ZoneMaps) -> tuple[str, str]:
     stiff = mp.moduli_mpa > 260
     at = [split_load(mp.patches["front"][:, j], mp.masses_kg) for j in np.flatnonzero(stiff)]
     hits = [bool(np.isfinite(s) and 35 - ABOUT_KG <= s <= 35 + ABOUT_KG) for s in at]
-    return _grade(hits), f"{_mod(mp.moduli_mpa, stiff)}: split at {_span(at)} kg"
+    return _grade(hits), f"{_mod(mp.moduli_mpa, stiff)}: split at {_span(at, unit=' kg')}"
 
 
 def _breit_front(mp: ZoneMaps) -> tuple[str, str]:
@@ -369,7 +370,7 @@ def _rear_pressure_min(mp: ZoneMaps) -> tuple[str, str]:
         offsets.append(abs(float(m[k]) - p) if np.isfinite(p) else float("nan"))
     hits = [bool(np.isfinite(o) and o <= PEAK_HALFWIDTH_KG) for o in offsets]
     return _grade(hits), (
-        f"{_mod(mp.moduli_mpa, stiff)}: minimum {_span(offsets)} kg from the area maximum"
+        f"{_mod(mp.moduli_mpa, stiff)}: minimum {_span(offsets, unit=' kg')} from the area maximum"
     )
 
 
@@ -397,7 +398,8 @@ def _front_pressure_min(mp: ZoneMaps) -> tuple[str, str]:
         rs.append(r)
         hits.append(30 - ABOUT_KG <= m[k] <= 30 + ABOUT_KG and r >= TRACK_R)
     return _grade(hits), (
-        f"{_mod(mp.moduli_mpa, sel)}: minima at {_span(where)} kg, r above = {_span(rs, '.2f')}"
+        f"{_mod(mp.moduli_mpa, sel)}: minima at {_span(where, unit=' kg')}, "
+        f"r above = {_span(rs, '.2f')}"
     )
 
 
