@@ -10,6 +10,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from _extras import needs_network
 from skisnow import InputError
 from skisnow.constants import STANDARD_GRAVITY
 from skisnow.paper import (
@@ -59,18 +60,22 @@ def test_each_ski_has_its_tolerances() -> None:
         assert (tol.length, tol.pressure, tol.share) == (0.10, 0.10, 0.03)
 
 
-@pytest.fixture(scope="module", params=ROUTES)
+#: The network route needs the 'network' extra (tests/_extras.py); the beam route never does.
+ROUTE_PARAMS = [pytest.param(r, marks=needs_network) if r == "network" else r for r in ROUTES]
+
+
+@pytest.fixture(scope="module", params=ROUTE_PARAMS)
 def rows(request):  # type: ignore[no-untyped-def]
     return request.param, caption_table(route=request.param)
 
 
-def test_caption_cases_balance_force_and_moment() -> None:
+@pytest.mark.parametrize("route", ROUTE_PARAMS)
+def test_caption_cases_balance_force_and_moment(route: str) -> None:
     case = next(c for c in CAPTIONS if c.ski == "classic" and c.load_position == -0.070)
-    for route in ROUTES:
-        zones = solve_caption_case(case, get_ski("classic-k22"), route=route)
-        force = sum(zones[n].force for n in ("rear", "middle", "front"))
-        assert force == pytest.approx(case.mass * STANDARD_GRAVITY, rel=1e-8)
-        assert sum(zones[n].load_share for n in ("rear", "middle", "front")) == pytest.approx(1.0)
+    zones = solve_caption_case(case, get_ski("classic-k22"), route=route)
+    force = sum(zones[n].force for n in ("rear", "middle", "front"))
+    assert force == pytest.approx(case.mass * STANDARD_GRAVITY, rel=1e-8)
+    assert sum(zones[n].load_share for n in ("rear", "middle", "front")) == pytest.approx(1.0)
 
 
 #: Caption numbers the shipped skis do NOT reach, per (ski, route), each as (case label, zone,
@@ -245,6 +250,7 @@ def test_caption_table_input_errors() -> None:
     assert {r.case.ski for r in only} == {"skate"} and np.all([r.zone != "middle" for r in only])
 
 
+@needs_network
 def test_captions_cli_json_and_bad_option(capsys) -> None:  # type: ignore[no-untyped-def]
     import json
 

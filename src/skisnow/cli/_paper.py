@@ -2,12 +2,13 @@
 
 from __future__ import annotations
 
+import importlib.util
 import math
 
 import typer
 
 from skisnow.cli._app import app
-from skisnow.cli._render import JsonOption, console, emit_json, print_table
+from skisnow.cli._render import JsonOption, console, emit_json, err_console, print_table
 
 
 def _tolerance_doc(tol) -> dict:  # type: ignore[no-untyped-def]
@@ -54,11 +55,22 @@ def captions(
         raise InputError(f"--route must be network, beam or both, not {route!r}")
     names = SHIPPED_SKIS if ski == "all" else (ski,)
     routes = ROUTES if route == "both" else (route,)
+    warnings: list[str] = []
+    if route == "both" and importlib.util.find_spec("jax") is None:
+        # the default asks for both routes; without the network extra, the beam route alone
+        routes = ("beam",)
+        warnings.append(
+            "network route left out: the camber network needs the 'network' extra "
+            "(uv sync --extra network); --route network asks for it explicitly"
+        )
+        if not json_out:
+            err_console.print(f"[yellow]warning:[/yellow] {warnings[-1]}")
     by_route = {r: caption_table(list(names), route=r) for r in routes}
     if json_out:
         emit_json(
             {
                 "routes": list(routes),
+                "warnings": warnings,
                 "tolerances": {n: _tolerance_doc(tolerances_of(get_ski(n))) for n in names},
                 "within": {
                     n: {
