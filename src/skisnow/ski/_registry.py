@@ -23,8 +23,8 @@ __all__ = ["PLAUSIBLE_SKIS", "REPRODUCTION_SKIS", "SHIPPED_SKIS", "get_ski", "sh
 
 #: The plausible skis: fitted to the paper's captions under the practitioners' limits.
 PLAUSIBLE_SKIS: tuple[str, ...] = ("classic", "skate")
-#: The reproduction skis of the paper (Kalliorinne et al., cited as 2023 in skisnow; "k22":
-#: Lubricants 10(11), 279, published 2022): fitted to the captions of its Figures 4-7 alone,
+#: The reproduction skis of the paper (Kalliorinne et al. 2023, Lubricants; "k22" is a short
+#: name for "the paper's skis", not a citation): fitted to the captions of its Figures 4-7 alone,
 #: NOT plausible skis (issue 30).
 REPRODUCTION_SKIS: tuple[str, ...] = ("classic-k22", "skate-k22")
 #: Names of the skis shipped with skisnow (see :func:`get_ski`).
