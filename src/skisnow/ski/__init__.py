@@ -5,8 +5,10 @@ A Macro-Scale Investigation of the Apparent Contact", Lubricants 11 (2023), §2�
 Breitschädel (2012, Procedia Eng. 34, 391–396) for the practitioners' metrics of a profile. The
 ski (not in the paper: the ground truth that generates bench data) free-floating on the rigid
 stone — force and moment balance as in eq. 3 with the unilateral contact solved as an LCP
-(Nocedal & Wright 2006, Alg. 16.3; Júdice & Pires 1994): :func:`solve_beam` →
-:class:`BeamSolution`, :func:`loaded_profile`; the skis :class:`Ski`, :class:`Provenance`, the
+(Nocedal & Wright 2006, Alg. 16.3; Júdice & Pires 1994), with contact points between the nodes
+(an exchange method for the non-penetration along the whole ski: :func:`solve_point_contact`,
+:class:`PointContact`, :class:`SubGrid`): :func:`solve_beam` → :class:`BeamSolution`,
+:func:`loaded_profile`; the skis :class:`Ski`, :class:`Provenance`, the
 shipped ones :data:`SHIPPED_SKIS` and :func:`get_ski` (a shipped name or a ski file), spline skis
 (:func:`spline_ski`); ski files (JSON ``skisnow-ski`` v1, validated, exact round trip):
 :func:`read_ski`, :func:`write_ski`, :func:`ski_to_json`; the beam's finite elements, which the
@@ -49,6 +51,13 @@ from skisnow.ski._breitschaedel import (
     breitschaedel_contact,
     height_above_support,
     support_line,
+)
+from skisnow.ski._contact_points import (
+    DEFAULT_TOL_PENETRATION,
+    PointContact,
+    SubGrid,
+    hermite_rows,
+    solve_point_contact,
 )
 from skisnow.ski._fem import GAUSS4_W, GAUSS4_X, banded_upper, boot_load_vector, shape_functions
 from skisnow.ski._lcp import BeamLcp, LcpResult, lower_hull_bracket
@@ -119,6 +128,7 @@ __all__ = [
     "DEFAULT_MASSES",
     "DEFAULT_METRIC_POSITION",
     "DEFAULT_N_ELEMENTS",
+    "DEFAULT_TOL_PENETRATION",
     "GAUSS4_W",
     "GAUSS4_X",
     "PLAUSIBLE_SKIS",
@@ -138,12 +148,14 @@ __all__ = [
     "Domain",
     "IdentificationResult",
     "LcpResult",
+    "PointContact",
     "Provenance",
     "ReferenceProfile",
     "Scaling",
     "Ski",
     "SkiMetrics",
     "SkiPassport",
+    "SubGrid",
     "TrainingProgress",
     "banded_upper",
     "beam_stiffness_matrix",
@@ -160,6 +172,7 @@ __all__ = [
     "get_ski",
     "height_above_support",
     "hermite_interpolate",
+    "hermite_rows",
     "identify_ski",
     "load_network",
     "loaded_profile",
@@ -179,6 +192,7 @@ __all__ = [
     "ski_to_document",
     "ski_to_json",
     "solve_beam",
+    "solve_point_contact",
     "spline_ski",
     "support_line",
     "three_point_bending_deflection",
