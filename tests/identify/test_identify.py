@@ -47,20 +47,27 @@ def _problem(bench, **kw):
     class Stop(Exception):
         pass
 
+    class Recorded(ident._Problem):
+        def __init__(self, *args, **kwargs):
+            super().__init__(*args, **kwargs)
+            captured["problem"] = self
+
     def capture(residuals, p0, *_, **__):
         captured["fun"] = lambda p: residuals(p, False)[0]
         captured["jac"] = lambda p: residuals(p, True)[1]
         captured["p0"] = p0
         raise Stop
 
-    orig = ident_fit.levenberg_marquardt
+    orig, orig_problem = ident_fit.levenberg_marquardt, ident._Problem
     ident_fit.levenberg_marquardt = capture
+    ident._Problem = Recorded
     try:
         ident.identify_ski(bench, **kw)
     except Stop:
         pass
     finally:
         ident_fit.levenberg_marquardt = orig
+        ident._Problem = orig_problem
     return captured
 
 
@@ -77,17 +84,31 @@ def _check_jacobian(c, n_stiffness: int, rel: float, steps=(1e-5, 1e-8)) -> int:
         fd = (c["fun"](p + e) - c["fun"](p - e)) / (2 * step)
         if np.linalg.norm(fd) < 1e-3 * np.linalg.norm(j):
             continue  # a spline coefficient the data barely see (noise of the contact solve)
+        fd2 = (c["fun"](p + e / 10) - c["fun"](p - e / 10)) / (0.2 * step)
+        if np.linalg.norm(fd2 - fd) > rel * np.linalg.norm(fd):
+            # the difference quotient is not converged here (a reaction crosses zero within
+            # the step: a kink of the residuals, or the round-off of nearly coincident contact
+            # points): no derivative to compare with at this resolution
+            continue
         assert np.linalg.norm(j[:, k] - fd) <= rel * np.linalg.norm(fd), k
         checked += 1
     return checked
 
 
 def test_jacobian_is_the_derivative_of_the_residuals(bench) -> None:
-    # The tangent through the beam at its active set against central differences (the active
-    # set does not change for these small steps).
+    # The tangent through the beam at its active contact points against central differences:
+    # the points held where the evaluation at p put them (the exchange method adds points where
+    # the ski dips below the stone between nodes, a kink of the residuals at the tolerance's
+    # scale) and the active set unchanged for these small steps.
     c = _problem(bench, element_length=0.01, n_stiffness=8, n_camber=30, lambdas=(1e3,),
                  continuation=(), initial=TRUE)  # fmt: skip
-    assert _check_jacobian(c, 8, 2e-3) >= 20
+    rng = np.random.default_rng(0)
+    p = c["p0"] + rng.normal(0, 1, c["p0"].size) * np.r_[np.full(8, 0.05), np.full(28, 2e-5)]
+    c["fun"](p)  # the contact points at p
+    c["problem"].freeze_points = True
+    # steps of 0.1 µm in z0: two contact points 0.24 mm apart make the contact's KKT system
+    # ill-conditioned, so its round-off (1e-9 relative to the 10 nm differences) would show
+    assert _check_jacobian(c, 8, 2e-3, steps=(1e-5, 1e-7)) >= 24
 
 
 def test_jacobian_of_the_smoothed_contact(bench, monkeypatch: pytest.MonkeyPatch) -> None:

@@ -18,15 +18,17 @@ from skisnow.ski import lower_hull_bracket
 __all__ = ["identified_profiles", "sandwich_covariance"]
 
 
-def _gcv(sol: _LmResult, pen: NDArray[np.float64], lam: float):
-    """GCV of the Gauss–Newton linearisation at ``sol`` with the penalty rows ``pen`` of λ:
-    ``(λ, GCV, misfit rms / σ, edf, step)`` (Craven & Wahba 1979; Wahba 1990, §4.3)."""
+def _gcv(sol: _LmResult, pen, lam: float):
+    """GCV of the Gauss–Newton linearisation at ``sol`` with the penalty rows ``pen`` of λ
+    (or ``(rows, target)``): ``(λ, GCV, misfit rms / σ, edf, step)`` (Craven & Wahba 1979;
+    Wahba 1990, §4.3)."""
+    pen, target = pen if isinstance(pen, tuple) else (pen, np.zeros(pen.shape[0]))
     j, r, p = sol.jac, sol.fun, sol.x
     jtj = j.T @ j
     ptp = pen.T @ pen
     a = jtj + ptp
     a_inv = np.linalg.pinv(a)
-    step = -a_inv @ (j.T @ r + ptp @ p)
+    step = -a_inv @ (j.T @ r + ptp @ p - pen.T @ target)
     rl = r + j @ step
     rss = float(rl @ rl)
     edf = float(np.trace(a_inv @ jtj))

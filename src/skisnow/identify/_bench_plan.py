@@ -175,7 +175,7 @@ def ski_parameters(problem: _Problem, ski: Ski) -> NDArray[np.float64]:
 def fit_parameters(problem: _Problem, p0: NDArray[np.float64], lam: float, *, max_nfev: int = 30):
     """The fit's Levenberg–Marquardt (exact contact, penalty of λ, the fit's bounds) from
     ``p0``: the result with ``x``, ``fun`` (σ-normalised residuals) and ``jac``."""
-    pen = problem.penalty_matrix(lam)
+    pen = problem.penalty(lam)
 
     def residuals(pp: NDArray[np.float64], jacobian: bool):
         r, j = problem.evaluate(pp, jacobian=jacobian)
@@ -337,11 +337,11 @@ def predict_identification_uncertainty(
     # -- with the regularisation: sandwich covariance, mean error, expected GCV
     records = []
     for lam in grid:
-        pen = problem.penalty_matrix(lam)
+        pen, target = problem.penalty(lam)
         ptp = pen.T @ pen
         a_inv = np.linalg.pinv(fisher + ptp)
         cov = a_inv @ fisher @ a_inv
-        mean_step = -a_inv @ (jac.T @ r0 + ptp @ p_ski)
+        mean_step = -a_inv @ (jac.T @ r0 + ptp @ p_ski - pen.T @ target)
         p_mean = p_ski + mean_step
         ei_bias = _rms(g_e[:, :n_e] @ p_mean[:n_e] - true_log_ei)
         z_mean = _design(problem.t_z, x_z) @ (problem.q_z @ p_mean[n_e:])

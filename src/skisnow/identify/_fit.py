@@ -191,7 +191,7 @@ def fit_bench(
     smooth = SmoothedBench(problem)
 
     def residuals_of(lam: float, subset: list[int] | None, eps: float | None):
-        pen = problem.penalty_matrix(lam)
+        pen = problem.penalty(lam)
 
         def residuals(pp: NDArray[np.float64], jacobian: bool):
             if eps is None:
@@ -229,7 +229,7 @@ def fit_bench(
         # the trace of its influence matrix; then one fit at the chosen λ from that step (or
         # from the fit itself if the step raises the misfit: the linearisation does not hold
         # that far).
-        records = [_gcv(sol, problem.penalty_matrix(v), v) for v in grid]
+        records = [_gcv(sol, problem.penalty(v), v) for v in grid]
         best = int(np.argmin([rec[1] for rec in records]))
         lam = grid[best]
         if lam != lam0:
@@ -241,7 +241,7 @@ def fit_bench(
                     rr, _, pen = residuals(pp, False)
                 except (ConvergenceError, np.linalg.LinAlgError):
                     return np.inf
-                rp = pen @ pp
+                rp = pen[0] @ pp - pen[1]
                 return float(rr @ rr + rp @ rp)
 
             if not cost_at(p_refit) <= cost_at(sol.x):
@@ -252,6 +252,20 @@ def fit_bench(
 
     if initial is None and start_parameters is None and not physics:
         p = homotopy(p, fit, cases, continuation, lam_smooth, say)
+    else:
+        # a start far above the noise (χ² above twice the bins) takes the smoothed path first:
+        # on the exact contact such a start ends in a local minimum where a contact point sits
+        # at the wrong wave of a flat glide zone (issue 25's ski, shop bench at 5 µm, from the
+        # load-difference start at 3.7 σ: 1.05 σ after 112 evaluations, then the smoothed
+        # restart and 0.93 σ; along the smoothed path first, 0.93 σ with 100 fewer)
+        try:
+            r0, _ = problem.evaluate(p, jacobian=False)
+            far = float(r0 @ r0) > 2.0 * problem.n_data
+        except (ConvergenceError, np.linalg.LinAlgError):
+            far = True
+        if far and start_parameters is None:
+            say("start above the noise: the smoothed contact from the start")
+            p = polish(p, fit, problem, max_nfev, say)
     sol, lam, records, best = exact(p)
     bound, dof = restart_bound(sol.jac, problem.penalty_matrix(lam))
     if float(sol.fun @ sol.fun) > bound:
@@ -268,7 +282,7 @@ def fit_bench(
         if trial[0].misfit_rms < sol.misfit_rms:
             sol, lam, records, best = trial
             bound, dof = restart_bound(sol.jac, problem.penalty_matrix(lam))
-    final = _gcv(sol, problem.penalty_matrix(lam), lam)
+    final = _gcv(sol, problem.penalty(lam), lam)
     table = tuple(
         (rec[0], rec[1], rec[2], rec[3]) if k != best else final[:4]
         for k, rec in enumerate(records)

@@ -151,6 +151,7 @@ from skisnow.identify._bands import identified_profiles
 from skisnow.identify._cases import _bench_cases, load_cases
 from skisnow.identify._fit import fit_bench
 from skisnow.identify._model import _Problem
+from skisnow.identify._noise import estimate_noise
 from skisnow.identify._resolution import AT_NOISE, refine_resolution
 from skisnow.identify._result import DEFAULT_LAMBDAS, IdentificationResult
 from skisnow.ski import DEFAULT_BOOT_LENGTH, DEFAULT_N_ELEMENTS, Provenance, Ski
@@ -295,20 +296,31 @@ def identify_ski(
     )
     nodes = np.linspace(x_tail, x_tip, n_el + 1)
 
-    cases, scatter, n_samples, scatter_dof = load_cases(raw, nodes, boot_length, bin_width)
+    cases, scatter, n_samples, _ = load_cases(raw, nodes, boot_length, bin_width)
+    try:
+        estimate = estimate_noise([(c[2], c[3]) for c in raw])
+    except ValueError:
+        raise InputError(
+            f"bench of ski {label!r}: every profile needs at least 5 stations to estimate the "
+            "noise"
+        ) from None
+    noise_warnings: list[str] = []
     if noise is None:
-        dof = scatter_dof
-        if dof < 10:
-            raise InputError(
-                "cannot estimate the bench noise from the scatter inside bins (too few samples "
-                "per bin): give noise= or a smaller bin_width"
-            )
-        sigma = max(np.sqrt(scatter / dof), 1e-7)
+        sigma_cases = np.maximum(np.nan_to_num(estimate.sigma, nan=estimate.pooled), 1e-7)
+        sigma = max(float(estimate.pooled), 1e-7)
     else:
         if not (np.isfinite(noise) and noise > 0):
             raise InputError(f"noise must be > 0 m, got {noise}")
         sigma = float(noise)
-    problem = _Problem(cases, nodes, n_stiffness, n_camber, sigma)
+        sigma_cases = np.full(len(cases), sigma)
+        ratio = sigma / max(float(estimate.pooled), 1e-12)
+        if not 1 / 1.5 <= ratio <= 1.5:
+            noise_warnings.append(
+                f"noise misestimate: the given noise {sigma * 1e3:.4g} mm is {ratio:.2g} times "
+                f"the noise the bench's profiles show ({estimate.pooled * 1e3:.4g} mm, from the "
+                "scatter about local cubics); the fit's weights and bands follow the given value"
+            )
+    problem = _Problem(cases, nodes, n_stiffness, n_camber, sigma_cases)
     options = dict(
         regularisation=regularisation, lambdas=lambdas, max_nfev=max_nfev,
         continuation=continuation, say=say,
@@ -316,7 +328,7 @@ def identify_ski(
     fitted = fit_bench(problem, cases, nodes, initial=initial, **options)
     # The z0 resolution by the discrepancy principle (Morozov 1966; Schwarz 1978)
     problem, fitted, resolution = refine_resolution(
-        problem, fitted, cases, nodes, n_stiffness=n_stiffness, sigma=sigma,
+        problem, fitted, cases, nodes, n_stiffness=n_stiffness, sigma=sigma_cases,
         n_camber_max=n_camber_max, options=options,
     )  # fmt: skip
     sol, lam, records, r = fitted.solution, fitted.regularisation, fitted.records, fitted.residuals
@@ -402,7 +414,7 @@ def identify_ski(
         message=str(sol.message),
         seconds=seconds,
         misfit=misfit,
-        warnings=warn,
+        warnings=tuple(noise_warnings) + warn,
         resolution=tuple(resolution),
         n_bins=problem.n_data,
     )

@@ -26,11 +26,17 @@ class _LmResult:
     x: NDArray[np.float64]  #: parameters
     fun: NDArray[np.float64]  #: data residuals (σ-normalised) at x
     jac: NDArray[np.float64]  #: their Jacobian at x
-    pen: NDArray[np.float64]  #: penalty rows (linear in p)
-    cost: float  #: ½ (|r|² + |P p|²)
+    pen: NDArray[np.float64]  #: penalty rows (the penalty residual is P p - t)
+    cost: float  #: ½ (|r|² + |P p - t|²)
     nfev: int
     status: int  #: 1 converged (Newton decrement), 0 evaluation limit, -1 no descent
     message: str
+    pen_target: NDArray[np.float64] | None = None  #: t (None: zero)
+
+    @property
+    def target(self) -> NDArray[np.float64]:
+        """The penalty's target t (zeros when none was given)."""
+        return np.zeros(self.pen.shape[0]) if self.pen_target is None else self.pen_target
 
     @property
     def misfit_rms(self) -> float:
@@ -38,8 +44,16 @@ class _LmResult:
 
 
 #: Stop when the Gauss–Newton step would lower the σ-normalised sum of squares by less than
-#: this: the step is then below ~0.1 standard deviation of the estimate (Newton decrement).
-_DECREMENT_TOL = 1e-2
+#: this: the step is then below ~0.3 standard deviation of the estimate (Newton decrement;
+#: 0.01 before issue 25: its last accepted steps moved χ² by 1-2 units in 10-40 evaluations on
+#: the exact contact, whose kinks reject most trial steps near the optimum).
+_DECREMENT_TOL = 0.1
+
+#: Growth of the damping (ν of Nielsen's update) after which rejected steps end the fit: five
+#: rounds of four trial points (the step and its halves) each, the damping then 2¹⁵ times its
+#: value (2²⁰ before issue 25: on the exact contact near the optimum those rounds were up to 80
+#: evaluations that lowered χ² by less than the tolerance).
+_NU_MAX = 2.0**6
 
 #: The same for the smoothed stages of the homotopy (only a start for the next stage).
 _HOMOTOPY_TOL = 0.1
@@ -83,7 +97,8 @@ def levenberg_marquardt(
     Madsen, Nielsen & Tingleff 2004, §3.2), steps projected onto the bounds.
 
     ``residuals(p, jacobian)`` returns the σ-normalised data residuals, their Jacobian (or
-    None) and the penalty rows P (the penalty residual is P p). The Jacobian is evaluated only
+    None) and the penalty rows P (the penalty residual is P p), or ``(P, t)`` (the penalty
+    residual is P p - t: a prior with a mean). The Jacobian is evaluated only
     at accepted points; trial points cost one residual evaluation.
 
     Why not ``scipy.optimize.least_squares``: its trust-region solvers factor the m × n
@@ -102,20 +117,22 @@ def levenberg_marquardt(
     """
     p = np.clip(p0, lower, upper)
     r, j, pen = residuals(p, True)
+    pen, target = pen if isinstance(pen, tuple) else (pen, np.zeros(pen.shape[0]))
     nfev = 1
 
     def cost_of(rr: NDArray[np.float64], pp: NDArray[np.float64]) -> float:
-        rp = pen @ pp
+        rp = pen @ pp - target
         return 0.5 * float(rr @ rr + rp @ rp)
 
     cost = cost_of(r, p)
     ptp = pen.T @ pen
+    pt = pen.T @ target
     mu, nu = -1.0, 2.0
     small_steps = 0  # consecutive accepted steps that lowered the sum of squares by < tol
     status, message = 0, "evaluation limit reached"
     while nfev < max_nfev:
         a = j.T @ j + ptp
-        g = j.T @ r + ptp @ p
+        g = j.T @ r + ptp @ p - pt
         dscale = np.maximum(np.diag(a), 1e-12 * max(float(np.max(np.diag(a))), 1e-300))
         if mu < 0:
             mu = 1e-3 * float(np.max(np.diag(a) / dscale))
@@ -156,20 +173,21 @@ def levenberg_marquardt(
                     cost = cost_of(r, p)
                     accepted = True
                     break
-            if predicted < 0.1 * tol:  # the damped step can no longer lower the misfit
+            if predicted < tol:  # the damped step can no longer lower the misfit
                 nu = 2.0**21  # by a meaningful amount: at the optimum within the model's noise
                 break
             mu *= nu
             nu *= 2.0
-            if nu > 2.0**20:
+            if nu > _NU_MAX:
                 break
         if not accepted:
-            if nu > 2.0**20:
+            if nu > _NU_MAX:
                 status, message = 1, "converged: no damped step lowers the misfit"
             break
     return _LmResult(
-        x=p, fun=r, jac=j, pen=pen, cost=cost, nfev=nfev, status=status, message=message
-    )
+        x=p, fun=r, jac=j, pen=pen, cost=cost, nfev=nfev, status=status, message=message,
+        pen_target=target,
+    )  # fmt: skip
 
 
 def _solve_spd(a: NDArray[np.float64], b: NDArray[np.float64]) -> NDArray[np.float64]:

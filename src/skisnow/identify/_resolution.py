@@ -81,7 +81,7 @@ def refine_resolution(
     nodes: NDArray[np.float64],
     *,
     n_stiffness: int,
-    sigma: float,
+    sigma: Any,
     n_camber_max: int,
     options: dict[str, Any],
 ) -> tuple[_Problem, BenchFit, list[tuple[int, float]]]:

@@ -10,7 +10,7 @@ __all__ = ["DEFAULT_LAMBDAS", "IdentificationResult"]
 
 #: Default λ grid of the GCV search (penalty on second differences of log-EI coefficients, in
 #: units of the σ-normalised misfit).
-DEFAULT_LAMBDAS: tuple[float, ...] = (1e5, 1e4, 1e3, 1e2, 1e1, 1.0, 0.1)
+DEFAULT_LAMBDAS: tuple[float, ...] = (1e5, 1e4, 1e3, 1e2, 1e1, 1.0, 0.1, 0.01)
 
 
 @dataclass(frozen=True, kw_only=True)

@@ -153,7 +153,7 @@ def _stiffness_from_differences(
     for k in others:
         c = cases[k]
         inside = (c.x > c1.x.min()) & (c.x < c1.x.max())
-        x, w = c.x[inside], c.w[inside] / problem.sigma
+        x, w = c.x[inside], c.w[inside] / problem.sigma_cases[k]
         dm = moment(k) - m1
         info += np.abs(dm)
         kern = w[:, None] * np.maximum(x[:, None] - xe[None, :], 0.0) * (dm * le)
