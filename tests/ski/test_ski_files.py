@@ -116,7 +116,7 @@ _DELETE = object()
     ("field", "value", "message"),
     [
         ("format", "other", r"format: must be 'skisnow-ski'"),
-        ("format_version", 99, r"format_version: this skisnow reads versions 1\.\.1"),
+        ("format_version", 99, r"format_version: this skisnow reads versions 1\.\.2"),
         ("kind", "alpine", r"kind: must be 'classic' or 'skate'"),
         ("name", "", r"name: must be non-empty text"),
         ("x_tail_mm", 10.0, r"x_tail_mm: must be < 0"),

@@ -12,7 +12,10 @@ practitioners' numbers of a ski read off its bench (Breitschädel 2012: camber h
 full body weight, wax pocket, closing load, stiffness k, contact lengths): :func:`ski_metrics` →
 :class:`SkiMetrics`, :func:`closing_load`, :func:`closing_load_from_bench`; and the passport of a
 ski (EI(x), z0(x) with their bands and those metrics): :func:`ski_passport` →
-:class:`SkiPassport`.
+:class:`SkiPassport`; for validation, a bench by an implementation independent of the beam
+of :mod:`skisnow.ski` (finite differences, contact at every node: :func:`reference_bench`,
+:func:`reference_profile`) and plausible synthetic skis whose truth is known
+(:func:`plausible_ski`, :func:`random_ski`, :func:`issue25_ski`).
 
 May import: ski
 """
@@ -29,6 +32,8 @@ from skisnow.bench._data import (
 )
 from skisnow.bench._metrics import SkiMetrics, closing_load, closing_load_from_bench, ski_metrics
 from skisnow.bench._passport import BAND_Z, SkiPassport, ski_passport
+from skisnow.bench._reference import FiniteDifferenceProfile, reference_bench, reference_profile
+from skisnow.bench._synthetic import RANGES, issue25_ski, plausible_ski, random_ski
 from skisnow.bench._table import LOAD_ORDER_TOLERANCE_MM
 from skisnow.bench._virtual import DEFAULT_LOAD_POSITIONS, DEFAULT_MASSES, bench_grid, run_bench
 
@@ -39,13 +44,20 @@ __all__ = [
     "DEFAULT_MASSES",
     "LOAD_ORDER_TOLERANCE_MM",
     "MIN_PROFILE_POINTS",
+    "RANGES",
     "BenchData",
+    "FiniteDifferenceProfile",
     "SkiMetrics",
     "SkiPassport",
     "bench_grid",
     "closing_load",
     "closing_load_from_bench",
+    "issue25_ski",
+    "plausible_ski",
+    "random_ski",
     "read_bench",
+    "reference_bench",
+    "reference_profile",
     "run_bench",
     "ski_metrics",
     "ski_passport",

@@ -39,10 +39,10 @@ from skisnow.bench._data import BenchData
 from skisnow.constants import STANDARD_GRAVITY
 from skisnow.ski import Ski
 
-__all__ = ["ReferenceProfile", "reference_bench", "reference_profile"]
+__all__ = ["FiniteDifferenceProfile", "reference_bench", "reference_profile"]
 
 
-class ReferenceProfile:
+class FiniteDifferenceProfile:
     """A loaded profile of :func:`reference_profile`: grid ``x`` [m], heights ``height`` [m],
     nodal reactions ``reactions`` [N], the contact set ``active`` and the iterations taken."""
 
@@ -131,7 +131,7 @@ def reference_profile(
     dx: float = 0.5e-3,
     start: NDArray[np.bool_] | None = None,
     max_iterations: int = 400,
-) -> ReferenceProfile:
+) -> FiniteDifferenceProfile:
     """The loaded camber of ``ski`` under ``mass`` [kg] through a uniform boot plate of
     ``boot_length`` [m] centred at ``load_position`` [m], on the rigid stone, by finite
     differences of spacing ``dx`` [m] with contact at every node (module docstring).
@@ -161,7 +161,7 @@ def reference_profile(
         add = ~active & (h < -tol_h)
         if not drop.any() and not add.any():
             h[active] = 0.0
-            return ReferenceProfile(x, np.maximum(h, 0.0), r, active.copy(), it)
+            return FiniteDifferenceProfile(x, np.maximum(h, 0.0), r, active.copy(), it)
         key = active.tobytes()
         if key in seen:
             single = True

@@ -1,12 +1,29 @@
-"""The uncertainty of a fit: GCV of its linearisation, the sandwich covariance, the bands.
+"""The uncertainty of a fit: GCV of its linearisation, the posterior, the bands and what is
+determined.
 
 λ by generalised cross-validation on the Gauss–Newton linearisation at a fit (Craven & Wahba
-1979; Wahba 1990, §4.3), the Gauss–Newton (sandwich) covariance of the penalised estimate,
-(JᵀJ + P)⁻¹ JᵀJ (JᵀJ + P)⁻¹ with σ-normalised residuals, and its propagation to log EI and to z0
-in the rest-on-the-plane gauge (stages 4 and 6 of :mod:`skisnow.identify._fit`).
+1979; Wahba 1990, §4.3). The bands are the Laplace approximation of the posterior of the
+penalised fit read as a Bayesian estimate (Wahba 1978, 1983; Nychka 1988): the penalty is a
+Gaussian prior with precision PᵀP (smoothness of log EI at the chosen λ, a proper ridge on the
+level of log EI and on z0: :data:`~skisnow.identify._model.PRIOR_LOG_EI_SD`,
+:data:`~skisnow.identify._model.PRIOR_Z0_SD`), the residuals are σ-normalised, so the posterior
+covariance of the parameters is (JᵀJ + PᵀP)⁻¹, inflated by χ²/dof when the fit ends above the
+noise. Unlike the noise-only sandwich (JᵀJ + PᵀP)⁻¹ JᵀJ (JᵀJ + PᵀP)⁻¹ of the fit before issue 25
+(4-34 times too narrow), it contains the prior's variance, which is the size of the bias the
+penalty may cause (Wahba 1983: the Bayesian intervals of a smoothing spline at its GCV λ cover
+the truth at about their nominal rate on average over the stations, Nychka 1988, though not at
+every station). The discretisation error of the forward model, estimated by a finer solve
+(:mod:`skisnow.identify._mesh_error`), adds its parameter shift (JᵀJ + PᵀP)⁻¹ Jᵀ δ as a bias.
+
+A station is *determined by the bench* where the data shrink the prior's variance to below a
+quarter (posterior standard deviation below half the prior's), and, for the stiffness, where the
+bench bends the ski: between the outermost contact points of its load cases (beyond them no
+load case carries a bending moment). Elsewhere the band is the prior's width.
 """
 
 from __future__ import annotations
+
+from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import NDArray
@@ -15,7 +32,17 @@ from skisnow.identify._lm import _LmResult
 from skisnow.identify._model import _design, _Problem
 from skisnow.ski import lower_hull_bracket
 
-__all__ = ["identified_profiles", "sandwich_covariance"]
+__all__ = ["Posterior", "identified_profiles", "posterior"]
+
+#: Posterior over prior standard deviation below which a station is determined by the bench.
+DETERMINED_RATIO = 0.5
+
+#: Stations of the identified ski: EI every 20 mm, z0 every 5 mm.
+_EI_STEP, _Z0_STEP = 0.02, 0.005
+
+#: The modes kept of the posterior (its square root at the stations, by singular values): those
+#: that carry 99.5 % of its variance, at most this many.
+MAX_MODES = 40
 
 
 def _gcv(sol: _LmResult, pen, lam: float):
@@ -37,39 +64,82 @@ def _gcv(sol: _LmResult, pen, lam: float):
     return lam, gcv, float(np.sqrt(rss / n)), edf, step
 
 
-def sandwich_covariance(sol: _LmResult) -> NDArray[np.float64]:
-    """The Gauss–Newton (sandwich) covariance of the parameters of the penalised fit ``sol``,
-    (JᵀJ + PᵀP)⁻¹ JᵀJ (JᵀJ + PᵀP)⁻¹ (σ-normalised residuals: the covariance of p)."""
+@dataclass(frozen=True, kw_only=True, eq=False)
+class Posterior:
+    """The Laplace posterior of a fit: ``covariance`` of the parameters (σ-normalised data),
+    ``prior`` the prior's covariance, ``inflation`` the factor χ²/dof applied (>= 1), ``dof``
+    the residual degrees of freedom, ``bias`` the parameter shift of the model's discretisation
+    error (added to the covariance as ``bias biasᵀ``)."""
+
+    covariance: NDArray[np.float64]
+    prior: NDArray[np.float64]
+    inflation: float
+    dof: float
+    bias: NDArray[np.float64]
+
+
+def posterior(sol: _LmResult, model_error: NDArray[np.float64] | None = None) -> Posterior:
+    """The Laplace posterior of the penalised fit ``sol`` (module docstring); ``model_error``
+    the σ-normalised residual change of a finer forward model (the discretisation error)."""
     jtj = sol.jac.T @ sol.jac
-    a_inv = np.linalg.pinv(jtj + sol.pen.T @ sol.pen)
-    return a_inv @ jtj @ a_inv
+    ptp = sol.pen.T @ sol.pen
+    cov = np.linalg.pinv(jtj + ptp)
+    prior = np.linalg.pinv(ptp)
+    n = sol.fun.size
+    dof = float(n - np.trace(cov @ jtj))
+    chi2 = float(sol.fun @ sol.fun)
+    inflation = max(1.0, chi2 / max(dof, 1.0))
+    bias = np.zeros(cov.shape[0])
+    if model_error is not None and model_error.size == n:
+        bias = cov @ (sol.jac.T @ model_error)
+    total = inflation * cov + np.outer(bias, bias)
+    return Posterior(covariance=total, prior=prior, inflation=inflation, dof=dof, bias=bias)
+
+
+@dataclass(frozen=True, kw_only=True, eq=False)
+class Profiles:
+    """EI and z0 of a fit at the identified ski's stations, with their bands."""
+
+    ex: NDArray[np.float64]
+    ei: NDArray[np.float64]
+    sd_log_ei: NDArray[np.float64]
+    ei_determined: NDArray[np.bool_]
+    cx: NDArray[np.float64]
+    z_rest: NDArray[np.float64]
+    sd_z: NDArray[np.float64]
+    z_determined: NDArray[np.bool_]
+    #: the posterior's square root at the stations: (k, EI stations) of log EI, (k, z0
+    #: stations) of z0 [m]; samples are the fit plus Σ_i ξ_i mode_i with ξ_i ~ N(0, 1)
+    modes_log_ei: NDArray[np.float64]
+    modes_z0: NDArray[np.float64]
 
 
 def identified_profiles(
     problem: _Problem,
     parameters: NDArray[np.float64],
-    cov: NDArray[np.float64],
+    post: Posterior,
     x_tail: float,
     x_tip: float,
-) -> tuple[NDArray[np.float64], ...]:
-    """EI and z0 of the fitted parameters with their standard deviations.
+    *,
+    bent: tuple[float, float],
+    measured: tuple[float, float],
+) -> Profiles:
+    """EI and z0 of the fitted parameters with their standard deviations, what the bench
+    determines (module docstring; ``bent``: the span between the outermost contact points of
+    the load cases [m], ``measured``: the first and last station [m]) and the posterior's
+    modes.
 
-    Returns
-    -------
-    tuple
-        ``(ex, ei, sd_log_ei, cx, z_rest, sd_z)``: EI [N m²] and the standard deviation of
-        log EI at stations ``ex`` 20 mm apart, z0 [m] resting on the plane (zero at the two
-        support points of its lower convex hull) and its standard deviation at stations ``cx``
-        5 mm apart.
+    EI [N m²] and the standard deviation of log EI at stations ``ex`` 20 mm apart, z0 [m]
+    resting on the plane (zero at the two support points of its lower convex hull) and its
+    standard deviation at stations ``cx`` 5 mm apart; where not determined, the prior's.
     """
-    n_stiffness = problem.n_e
+    n_e = problem.n_e
     theta_e, theta_z = problem.split(parameters)
-    ex = np.unique(np.concatenate([np.arange(x_tail, x_tip, 0.02), [x_tip]]))
+    ex = np.unique(np.concatenate([np.arange(x_tail, x_tip, _EI_STEP), [x_tip]]))
     ei = problem.ei_at(theta_e, ex)
-    be = _design(problem.t_e, ex)
-    cov_e = cov[:n_stiffness, :n_stiffness]
-    sd_log_ei = np.sqrt(np.maximum(np.einsum("ij,jk,ik->i", be, cov_e, be), 0.0))
-    cx = np.unique(np.concatenate([np.arange(x_tail, x_tip, 0.005), [x_tip]]))
+    be = np.zeros((ex.size, parameters.size))
+    be[:, :n_e] = _design(problem.t_e, ex)
+    cx = np.unique(np.concatenate([np.arange(x_tail, x_tip, _Z0_STEP), [x_tip]]))
     zc = problem.z0_at(theta_z, cx)
     i, j = lower_hull_bracket(cx, zc, 0.0)
     s1, s2 = cx[i], cx[j]
@@ -77,7 +147,27 @@ def identified_profiles(
     z_rest = np.maximum(zc - line, 0.0)
     bz = _design(problem.t_z, cx)
     bz_g = bz - (np.outer((s2 - cx) / (s2 - s1), bz[i]) + np.outer((cx - s1) / (s2 - s1), bz[j]))
-    tz = bz_g @ problem.q_z
-    cov_z = cov[n_stiffness:, n_stiffness:]
-    sd_z = np.sqrt(np.maximum(np.einsum("ij,jk,ik->i", tz, cov_z, tz), 0.0))
-    return ex, ei, sd_log_ei, cx, z_rest, sd_z
+    tz = np.zeros((cx.size, parameters.size))
+    tz[:, n_e:] = bz_g @ problem.q_z
+
+    def sd(rows: NDArray[np.float64], cov: NDArray[np.float64]) -> NDArray[np.float64]:
+        return np.sqrt(np.maximum(np.einsum("ij,jk,ik->i", rows, cov, rows), 0.0))
+
+    sd_e, prior_e = sd(be, post.covariance), sd(be, post.prior)
+    sd_zz, prior_z = sd(tz, post.covariance), sd(tz, post.prior)
+    det_e = (sd_e < DETERMINED_RATIO * prior_e) & (ex >= bent[0]) & (ex <= bent[1])
+    det_z = (sd_zz < DETERMINED_RATIO * prior_z) & (cx >= measured[0]) & (cx <= measured[1])
+    sd_e = np.where(det_e, sd_e, np.maximum(sd_e, prior_e))
+    sd_zz = np.where(det_z, sd_zz, np.maximum(sd_zz, prior_z))
+    # the posterior's square root at the stations, by singular values
+    rows = np.concatenate([be, tz])
+    w, v = np.linalg.eigh(0.5 * (post.covariance + post.covariance.T))
+    root = rows @ (v * np.sqrt(np.maximum(w, 0.0)))  # (stations, n_params)
+    u, s, _ = np.linalg.svd(root, full_matrices=False)
+    share = np.cumsum(s**2) / max(float(np.sum(s**2)), 1e-300)
+    k = int(min(MAX_MODES, np.searchsorted(share, 0.995) + 1))
+    modes = (u[:, :k] * s[:k]).T  # (k, stations)
+    return Profiles(
+        ex=ex, ei=ei, sd_log_ei=sd_e, ei_determined=det_e, cx=cx, z_rest=z_rest, sd_z=sd_zz,
+        z_determined=det_z, modes_log_ei=modes[:, : ex.size], modes_z0=modes[:, ex.size :],
+    )  # fmt: skip

@@ -73,8 +73,8 @@ al. 2023, §3.1, eq. 1) against every profile of the bench, with the exact Jacob
    repeats the start (25-30 s). Where the misfit above the noise is the model's (the full sequence
    of the skate of version 1 at 5 µm: 1.93 σ, and 1.57 σ started at the true ski: the z0 spline
    cannot follow its glide hump), the restart does not lower it.
-6. Bands: the Gauss–Newton (sandwich) covariance of the penalised estimate,
-   (JᵀJ + P)⁻¹ JᵀJ (JᵀJ + P)⁻¹, propagated to log EI and to z0 in the rest-on-the-plane gauge.
+6. Bands: the Laplace posterior of the penalised estimate (:mod:`skisnow.identify._bands`,
+   computed by :func:`~skisnow.identify.identify_ski` after the discretisation error).
 
 Each stage is a Levenberg–Marquardt fit on the normal equations
 (:func:`~skisnow.identify._lm.levenberg_marquardt`).
@@ -99,7 +99,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from skisnow._errors import ConvergenceError, InputError
-from skisnow.identify._bands import _gcv, sandwich_covariance
+from skisnow.identify._bands import _gcv
 from skisnow.identify._homotopy import homotopy, polish, restart_bound
 from skisnow.identify._lm import (
     _DECREMENT_TOL,
@@ -129,8 +129,6 @@ class BenchFit:
         The chosen λ.
     records
         ``((λ, GCV score, misfit rms / σ, effective degrees of freedom), ...)`` of the search.
-    covariance
-        Gauss–Newton (sandwich) covariance of the parameters (σ-normalised residuals).
     residuals
         σ-normalised residuals of the data at the solution.
     chi2_bound
@@ -142,7 +140,6 @@ class BenchFit:
     solution: Any
     regularisation: float
     records: tuple[tuple[float, float, float, float], ...]
-    covariance: NDArray[np.float64]
     residuals: NDArray[np.float64]
     chi2_bound: float
 
@@ -220,10 +217,14 @@ def fit_bench(
     lam_smooth = max(grid)
     lam0 = float(np.sqrt(max(grid) * max(min(grid), 1e-12))) if len(grid) > 1 else grid[0]
 
-    def exact(p: NDArray[np.float64]) -> tuple[_LmResult, float, tuple, int]:
-        """The exact contact from ``p``: the fit at λ0, GCV, the fit at the chosen λ."""
-        sol = fit(p, lam0)
-        say(f"fit at λ = {lam0:.3g}: misfit rms {sol.misfit_rms:.3g} σ, {sol.nfev} evaluations")
+    def exact(
+        p: NDArray[np.float64], lam_first: float | None = None
+    ) -> tuple[_LmResult, float, tuple, int]:
+        """The exact contact from ``p``: the fit at λ0 (or ``lam_first``, a λ chosen by GCV on
+        the smoothed path's last fit), GCV, the fit at the chosen λ if it differs."""
+        lam_a = lam0 if lam_first is None else lam_first
+        sol = fit(p, lam_a)
+        say(f"fit at λ = {lam_a:.3g}: misfit rms {sol.misfit_rms:.3g} σ, {sol.nfev} evaluations")
         # GCV (Craven & Wahba 1979) of the Gauss–Newton linearisation at this fit: for every λ
         # the penalised linear least-squares step from the fit, its residual sum of squares and
         # the trace of its influence matrix; then one fit at the chosen λ from that step (or
@@ -232,7 +233,7 @@ def fit_bench(
         records = [_gcv(sol, problem.penalty(v), v) for v in grid]
         best = int(np.argmin([rec[1] for rec in records]))
         lam = grid[best]
-        if lam != lam0:
+        if lam != lam_a:
             p_refit = sol.x + records[best][4]
             residuals = residuals_of(lam, None, None)
 
@@ -250,6 +251,7 @@ def fit_bench(
             say(f"fit at λ = {lam:.3g}: misfit rms {sol.misfit_rms:.3g} σ, {sol.nfev} evaluations")
         return sol, lam, tuple(records), best
 
+    lam_first: float | None = None
     if initial is None and start_parameters is None and not physics:
         p = homotopy(p, fit, cases, continuation, lam_smooth, say)
     else:
@@ -265,8 +267,13 @@ def fit_bench(
             far = True
         if far and start_parameters is None:
             say("start above the noise: the smoothed contact from the start")
-            p = polish(p, fit, problem, max_nfev, say)
-    sol, lam, records, best = exact(p)
+            p, last = polish(p, fit, problem, max_nfev, say)
+            if last is not None and len(grid) > 1:
+                # λ by GCV on the smoothed path's last fit (its stone the exact one within
+                # the noise): the exact fit then starts at the λ it will most likely keep
+                lam_first = grid[int(np.argmin([_gcv(last, problem.penalty(v), v)[1]
+                                                for v in grid]))]  # fmt: skip
+    sol, lam, records, best = exact(p, lam_first)
     bound, dof = restart_bound(sol.jac, problem.penalty_matrix(lam))
     if float(sol.fun @ sol.fun) > bound:
         # Globalisation of a fit that ends above the noise (module docstring, stage 5): the
@@ -277,8 +284,8 @@ def fit_bench(
             f"χ² {float(sol.fun @ sol.fun):.0f} above the discrepancy bound {bound:.0f} "
             f"({dof:.0f} residual degrees of freedom): the smoothed contact from the fit"
         )
-        p = polish(p, fit, problem, max_nfev, say)
-        trial = exact(p)
+        p, _ = polish(p, fit, problem, max_nfev, say)
+        trial = exact(p, lam)
         if trial[0].misfit_rms < sol.misfit_rms:
             sol, lam, records, best = trial
             bound, dof = restart_bound(sol.jac, problem.penalty_matrix(lam))
@@ -287,8 +294,6 @@ def fit_bench(
         (rec[0], rec[1], rec[2], rec[3]) if k != best else final[:4]
         for k, rec in enumerate(records)
     )
-    cov = sandwich_covariance(sol)  # σ-normalised residuals: the covariance of p
     return BenchFit(
-        solution=sol, regularisation=lam, records=table, covariance=cov, residuals=sol.fun,
-        chi2_bound=bound,
+        solution=sol, regularisation=lam, records=table, residuals=sol.fun, chi2_bound=bound,
     )  # fmt: skip

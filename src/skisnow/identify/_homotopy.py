@@ -135,12 +135,13 @@ def polish(
     problem: _Problem,
     max_nfev: int,
     say: Callable[[str], None],
-) -> NDArray[np.float64]:
+) -> tuple[NDArray[np.float64], _LmResult | None]:
     """The smoothed contact restarted at the stalled fit ``p`` (stage 5 of
     :mod:`skisnow.identify._fit`): ε = 3, 1, 0.3, 0.1 µm at λ = :data:`_POLISH_LAMBDA`, then on
     to 1 nm while the smoothed stone differs from the exact contact by more than the noise
     (:func:`smoothing_gap`); a smoothed contact that fails ends the path. Returns its last
-    point."""
+    point and its last fit (None if none ran)."""
+    smoothed = None
     try:
         for eps in _POLISH + _POLISH_FINE:
             smoothed = fit(p, _POLISH_LAMBDA, eps=eps, nfev=min(max_nfev, _POLISH_NFEV))
@@ -153,4 +154,4 @@ def polish(
                 say(f"smoothed contact ε = {eps * 1e6:g} µm: χ² {gap:.0f} off the exact")
     except ConvergenceError as exc:
         say(f"smoothed contact stopped ({exc}); on to the exact contact")
-    return p
+    return p, smoothed

@@ -27,7 +27,6 @@ from scipy.sparse import csr_matrix
 from skisnow._errors import ConvergenceError
 from skisnow.identify._banded_kernel import banded_cholesky, banded_solve
 from skisnow.ski import (
-    DEFAULT_TOL_PENETRATION,
     GAUSS4_W,
     GAUSS4_X,
     SubGrid,
@@ -49,6 +48,11 @@ _LAMBDA_1 = 1.0
 #: fit otherwise ran it to its bound (measured: a shop bench from the default start, EI ×1000 in
 #: the glide zones at 10.6 σ), and it is the band there (the prior's width).
 PRIOR_LOG_EI_MEAN = float(np.log(1000.0))
+#: The prior of the free camber's spline coefficients (without their linear part): normal
+#: about 0 with 10 mm standard deviation (a ski's camber, pocket and shovel are within 0-35 mm
+#: of the plane it rests on). Against the data it weighs as one bin of 10 mm error: nothing
+#: where a station measures z0; beyond the measured stations it is the band.
+PRIOR_Z0_SD = 10e-3
 
 #: The penetration left between contact points during the fit [m]: 0.1 nm moves the loaded
 #: heights by at most 0.18 µm against 0.01 nm (five skis, four load cases each: issue 25's ski,
@@ -228,6 +232,10 @@ class _Problem:
         ] * len(cases)
         #: the deepest remaining penetration [m] of each case's last contact
         self.penetration = np.zeros(len(cases))
+        #: the square roots of the bins' Huber weights (1: least squares; skisnow.identify._robust)
+        self.bin_weights = [np.ones(c.x.size) for c in cases]
+        #: the active contact points [m] of each case at the last evaluation
+        self.contacts: list[NDArray[np.float64]] = [np.zeros(0)] * len(cases)
         self.tol_penetration = FIT_TOL_PENETRATION
         #: hold every case's contact points where the last evaluation left them (no exchange
         #: rounds): the residuals are then smooth in p (for checks of the Jacobian)
@@ -239,6 +247,11 @@ class _Problem:
         self.last_state: list[tuple[NDArray[np.float64], float, float] | None] = [None] * len(cases)
         self.n_data = int(sum(c.x.size for c in cases))
         self._beam_cache: list[tuple[bytes, _Beam]] = []
+
+    def set_bin_weights(self, flat: NDArray[np.float64]) -> None:
+        """Set the square roots of the bins' weights from one array over all bins."""
+        cuts = np.cumsum([c.x.size for c in self.cases])[:-1]
+        self.bin_weights = [np.asarray(w, dtype=float) for w in np.split(flat, cuts)]
 
     # -- parameters
     def split(self, p: NDArray[np.float64]) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
@@ -341,7 +354,9 @@ class _Problem:
             self.last_state[k] = (u, float(a), float(b))
             self.penetration[k] = pc.penetration
             hmod = self.phi_z_cases[k] @ theta_z + a + b * c.x + c.hermite @ u
-            res_parts.append(c.w * (hmod - c.h) / self.sigma_cases[k])
+            self.contacts[k] = pc.x[on]
+            bw = c.w * self.bin_weights[k] / self.sigma_cases[k]
+            res_parts.append(bw * (hmod - c.h))
             if not jacobian:
                 continue
             # tangent at the active points A: K du = U_A dr - dK u; the gaps at A stay zero;
@@ -384,7 +399,7 @@ class _Problem:
             du[:, : self.n_e] -= v
             dh = c.hermite @ du + da[None, :] + c.x[:, None] * db[None, :]
             dh[:, self.n_e :] += self.q_z_cases[k]
-            jac_parts.append((c.w / self.sigma_cases[k])[:, None] * dh)
+            jac_parts.append(bw[:, None] * dh)
         res = np.concatenate(res_parts)
         jac = np.concatenate(jac_parts) if jacobian else None
         return res, jac
@@ -392,7 +407,8 @@ class _Problem:
     def penalty_matrix(self, lam: float, lam_z: float = _LAMBDA_Z) -> NDArray[np.float64]:
         """Rows P of the penalty residual P p - t (:meth:`penalty_target`): sqrt(λ) D₂ θ_E,
         sqrt(λ₁) D₁ θ_E, θ_E / s_E (the prior of :data:`PRIOR_LOG_EI_SD`), sqrt(λ_z) D₂ θ_z /
-        z_ref (linear in p). The weak first-difference term (λ₁ = 1) fixes the log-EI trend where
+        z_ref, φ / s_z (:data:`PRIOR_Z0_SD`) (linear in p). The weak first-difference term
+        (λ₁ = 1) fixes the log-EI trend where
         the bench carries no bending moment (the free overhangs): there the data leave log EI
         undetermined, and without it a Gauss–Newton step runs off along that null direction.
         Read as a Gaussian prior (Wahba 1978), PᵀP is its precision (σ-normalised)."""
@@ -410,7 +426,10 @@ class _Problem:
         rows_z = np.sqrt(lam_z) * np.concatenate(
             [np.zeros((self.n_z - 2, self.n_e)), self.d2_z @ self.q_z], axis=1
         )
-        return np.concatenate([rows_e, rows_z], axis=0)
+        ridge_z = np.concatenate(
+            [np.zeros((self.n_z - 2, self.n_e)), np.eye(self.n_z - 2) / PRIOR_Z0_SD], axis=1
+        )
+        return np.concatenate([rows_e, rows_z, ridge_z], axis=0)
 
     def penalty_target(self, lam: float, lam_z: float = _LAMBDA_Z) -> NDArray[np.float64]:
         """t of the penalty residual P p - t: the prior mean of log EI on its ridge rows."""

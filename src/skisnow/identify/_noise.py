@@ -62,7 +62,9 @@ def pseudo_residuals(x: NDArray[np.float64], h: NDArray[np.float64]) -> NDArray[
     return np.einsum("mj,mj->m", w, h[win])
 
 
-def estimate_noise(profiles: Sequence[tuple[NDArray[np.float64], NDArray[np.float64]]]) -> NoiseEstimate:
+def estimate_noise(
+    profiles: Sequence[tuple[NDArray[np.float64], NDArray[np.float64]]],
+) -> NoiseEstimate:
     """The noise of each profile ``(x [m], h [m])`` of a bench (module docstring).
 
     Raises ``ValueError`` when no profile has five stations."""

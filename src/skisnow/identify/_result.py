@@ -20,39 +20,51 @@ class IdentificationResult:
     Attributes
     ----------
     ski
-        The identified :class:`Ski` (EI(x), z0(x) resting on the plane, their standard
-        deviations ``stiffness_log_sd``/``camber_sd``, provenance).
-    regularisation
-        The chosen λ (penalty on second differences of log-EI coefficients).
-    criterion
-        How λ was chosen (``'gcv'`` or ``'given'``).
+        The identified :class:`Ski`: EI(x), z0(x) resting on the plane, their standard
+        deviations (``stiffness_log_sd``/``camber_sd``: the Laplace posterior, the prior's
+        width where the bench does not determine them), which stations the bench determines
+        (``stiffness_determined``/``camber_determined``), the posterior's modes, provenance.
+    regularisation, criterion
+        The chosen λ and how (``'gcv'`` or ``'given'``).
     gcv
-        ``((λ, GCV score, misfit rms / σ, effective degrees of freedom), ...)`` of the search:
-        of the Gauss–Newton linearisation around the fit at the middle of the grid, and for the
-        chosen λ of its own fit.
+        ``((λ, GCV score, misfit rms / σ, effective degrees of freedom), ...)`` of the search.
     noise
-        Bench noise σ [m] used to normalise residuals (estimated from the scatter inside bins,
-        or given).
+        Bench noise σ [m] (pooled over the load cases; estimated from the scatter of the
+        profiles about local cubics, or given).
+    noise_cases
+        ``((mass [kg], x_m [m], σ [m], misfit rms / σ), ...)`` per load case.
     residual_rms
-        RMS of model - data over all samples [m] (from the bins and their scatter).
-    n_cases, n_samples, n_parameters
-        Load cases, bench samples and fitted parameters.
-    n_evaluations, converged, message
-        Optimiser evaluations of the final fit, its status and message.
+        RMS of model - data over all bins [m].
+    n_cases, n_samples, n_parameters, n_bins
+        Load cases, bench samples, fitted parameters and bins of the fit.
+    n_evaluations, message
+        Evaluations of the final fit, and how it ended.
+    converged
+        Whether the fit explains the bench down to its noise (χ² within its discrepancy
+        bound) with a forward model accurate to a fifth of the noise (``diagnosis``).
     seconds
         Wall time of the identification.
     misfit
-        RMS of the σ-normalised residuals of the bins at the fit (each bin mean weighted by
-        the square root of its count): 1 ± (2 n)^-1/2 for a fit at the noise, n bins.
-    n_bins
-        Bins of the fit (the n of ``misfit``).
+        RMS of the σ-normalised residuals of the bins at the fit: 1 ± (2 n)^-1/2 at the noise.
+    chi2_bound
+        The discrepancy bound of the fit's χ² (its residual degrees of freedom + 2 standard
+        deviations).
     resolution
-        ``((n_camber, misfit), ...)`` of each z0 resolution fitted, in turn (the discrepancy
-        principle: refined while above the noise); the ski's is the provenance's ``n_camber``
-        (a last refinement that does not lower the information criterion is not kept).
+        ``((n_camber, misfit), ...)`` of each z0 resolution fitted, in turn.
+    mesh_error
+        ``(rms [m], max [m], element length [m])``: the discretisation error of the forward
+        model at the fit (the change of the bins' model heights on a mesh of half the element
+        length, :mod:`skisnow.identify._mesh_error`).
+    outliers
+        ``((mass [kg], x_m [m], x [m], residual [m], z), ...)``: bins beyond the Huber
+        threshold at the end of the fit (:mod:`skisnow.identify._robust`).
+    posterior_inflation
+        The factor χ²/dof (>= 1) the bands were widened by.
+    causes
+        Why the result is not better, main cause first (``'mesh'``, ``'noise'``,
+        ``'evaluations'``, ``'model'``, ``'information'``; :mod:`skisnow.identify._diagnosis`).
     warnings
-        Said when the fit is not at the noise (``misfit`` above :data:`AT_NOISE`): the
-        identified ski may be a local minimum of the misfit, not the ski on the bench.
+        The same in words, with what would help.
     """
 
     ski: Ski
@@ -72,8 +84,14 @@ class IdentificationResult:
     warnings: tuple[str, ...] = ()
     resolution: tuple[tuple[int, float], ...] = ()
     n_bins: int = 0
+    chi2_bound: float = float("nan")
+    noise_cases: tuple[tuple[float, float, float, float], ...] = ()
+    mesh_error: tuple[float, float, float] = (float("nan"), float("nan"), float("nan"))
+    outliers: tuple[tuple[float, float, float, float, float], ...] = ()
+    posterior_inflation: float = 1.0
+    causes: tuple[str, ...] = ()
 
     @property
     def at_noise(self) -> bool:
-        """Whether the fit explains the bench down to its noise (no warning)."""
-        return not self.warnings
+        """Whether the fit explains the bench down to its noise (χ² within its bound)."""
+        return bool(self.n_bins and self.misfit**2 * self.n_bins <= self.chi2_bound)

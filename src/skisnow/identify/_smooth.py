@@ -154,7 +154,8 @@ class SmoothedBench:
             u, a, b = state
             self.state[k] = (u, a, b)
             hmod = pr.phi_z_cases[k] @ theta_z + a + b * c.x + c.hermite @ u
-            res.append(c.w * (hmod - c.h) / pr.sigma_cases[k])
+            bw = c.w * pr.bin_weights[k] / pr.sigma_cases[k]
+            res.append(bw * (hmod - c.h))
             if not jacobian:
                 continue
             t = -self._gaps(z0s, u, a, b) / eps
@@ -178,7 +179,7 @@ class SmoothedBench:
             du, da, db = self._solve(hess, d, rhs_u, rhs_ab, room=True)
             dh = c.hermite @ du + da[None, :] + c.x[:, None] * db[None, :]
             dh[:, pr.n_e :] += pr.q_z_cases[k]
-            jac.append((c.w / pr.sigma_cases[k])[:, None] * dh)
+            jac.append(bw[:, None] * dh)
         r_all = np.concatenate(res)
         return r_all, (np.concatenate(jac) if jacobian else None)
 
@@ -204,9 +205,7 @@ class SmoothedBench:
             g_a = f_total - float(r.sum())
             g_b = m_total - float(np.sum(r * xs))
             hess = self._hessian(ab, d)
-            step_u, step_a, step_b = self._solve(
-                hess, d, -g_u[:, None], -np.array([[g_a], [g_b]])
-            )
+            step_u, step_a, step_b = self._solve(hess, d, -g_u[:, None], -np.array([[g_a], [g_b]]))
             su, sa, sb = step_u[:, 0], float(step_a[0]), float(step_b[0])
             dh = (self.nmat @ su).reshape(xs.shape) + sa + sb * xs
             slope = float(g_u @ su + g_a * sa + g_b * sb)

@@ -10,8 +10,10 @@ stone — force and moment balance as in eq. 3 with the unilateral contact solve
 :class:`PointContact`, :class:`SubGrid`): :func:`solve_beam` → :class:`BeamSolution`,
 :func:`loaded_profile`; the skis :class:`Ski`, :class:`Provenance`, the
 shipped ones :data:`SHIPPED_SKIS` and :func:`get_ski` (a shipped name or a ski file), spline skis
-(:func:`spline_ski`); ski files (JSON ``skisnow-ski`` v1, validated, exact round trip):
-:func:`read_ski`, :func:`write_ski`, :func:`ski_to_json`; the beam's finite elements, which the
+(:func:`spline_ski`); ski files (JSON ``skisnow-ski`` v1 and v2, validated, exact round trip;
+v2 adds an identified ski's determined stations and posterior modes):
+:func:`read_ski`, :func:`write_ski`, :func:`ski_to_json`; samples of an identified ski from
+its posterior, :func:`sample_skis`; the beam's finite elements, which the
 identification reuses (:func:`beam_stiffness_matrix`, :func:`hermite_interpolate`,
 :func:`boot_load_vector`, :class:`BeamLcp`, …) and beam references for the tests
 (:func:`cantilever_tip_deflection`, :func:`three_point_bending_deflection`); metrics of a loaded
@@ -71,6 +73,7 @@ from skisnow.ski._metrics import (
     wax_pocket,
     wax_pocket_length,
 )
+from skisnow.ski._posterior import sample_skis
 from skisnow.ski._registry import (
     PLAUSIBLE_SKIS,
     REPRODUCTION_SKIS,
@@ -180,6 +183,7 @@ __all__ = [
     "predict_identification_uncertainty",
     "read_ski",
     "run_bench",
+    "sample_skis",
     "save_network",
     "shape_functions",
     "shipped_network",

@@ -59,6 +59,12 @@ from scipy.linalg import solveh_banded
 
 from skisnow._errors import ConvergenceError, InputError, SolverStatus, UnsupportedLoadError
 from skisnow.constants import STANDARD_GRAVITY
+from skisnow.ski._contact_points import (
+    DEFAULT_TOL_PENETRATION,
+    PointContact,
+    SubGrid,
+    solve_point_contact,
+)
 from skisnow.ski._fem import (
     assemble_clamped,
     beam_stiffness_matrix,
@@ -67,12 +73,6 @@ from skisnow.ski._fem import (
     clamped_dofs,
     hermite_interpolate,
     three_point_bending_deflection,
-)
-from skisnow.ski._contact_points import (
-    DEFAULT_TOL_PENETRATION,
-    PointContact,
-    SubGrid,
-    solve_point_contact,
 )
 from skisnow.ski._lcp import BeamLcp, LcpResult, lower_hull_bracket
 from skisnow.ski._skis import Ski
@@ -93,7 +93,9 @@ DEFAULT_BOOT_LENGTH: float = 0.10
 DEFAULT_N_ELEMENTS: int = 400
 
 
-def _point_intervals(points: NDArray[np.float64], spacing: float) -> tuple[tuple[float, float], ...]:
+def _point_intervals(
+    points: NDArray[np.float64], spacing: float
+) -> tuple[tuple[float, float], ...]:
     """Runs of contact points [m] (sorted) less than ``spacing`` (an element, with a margin)
     apart, as ((start, end), ...)."""
     if points.size == 0:
@@ -376,8 +378,10 @@ def solve_beam(
         u = pc.u
         on = pc.active
         points, point_r, penetration = pc.x[on], pc.reactions[on], pc.penetration
-        point_gap, point_neg = float(np.max(np.abs(pc.gap[on]), initial=0.0)), float(
-            np.max(np.maximum(-pc.reactions, 0.0), initial=0.0))
+        point_gap, point_neg = (
+            float(np.max(np.abs(pc.gap[on]), initial=0.0)),
+            float(np.max(np.maximum(-pc.reactions, 0.0), initial=0.0)),
+        )
         order = np.argsort(points)
         points, point_r = points[order], point_r[order]
     else:
@@ -409,9 +413,7 @@ def solve_beam(
     height[active] = 0.0
     scale_r = force
     # complementarity at the contact points: the nodes (nodal contact) or every candidate point
-    comp = (
-        np.max(np.abs(r * height)) / (scale_r * href) if contact == "nodal" else point_gap / href
-    )
+    comp = np.max(np.abs(r * height)) / (scale_r * href) if contact == "nodal" else point_gap / href
     residual = float(
         max(
             kkt_residual if contact == "nodal" else 0.0,

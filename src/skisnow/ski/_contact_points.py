@@ -80,9 +80,7 @@ class SubGrid:
         n_el, m = x.shape
         rows = np.repeat(np.arange(n_el * m), 4)
         cols = (2 * np.arange(n_el)[:, None, None] + np.arange(4)[None, None, :]).repeat(m, 1)
-        matrix = csr_matrix(
-            (shape.ravel(), (rows, cols.ravel())), shape=(n_el * m, 2 * nodes.size)
-        )
+        matrix = csr_matrix((shape.ravel(), (rows, cols.ravel())), shape=(n_el * m, 2 * nodes.size))
         return cls(nodes=nodes, x=x, shape=shape, matrix=matrix)
 
     def deflection(self, u: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -263,7 +261,8 @@ def solve_point_contact(
             return PointContact(
                 x=xc, node=np.arange(xc.size) < n, reactions=r, active=sol.active.copy(), u=u,
                 translation=float(a), rotation=float(b), flex=flex_c, response=response,
-                gap=g + a + b * xc + flex_c[:, act] @ r[act], rounds=rounds, iterations=iterations, penetration=depth,
+                gap=g + a + b * xc + flex_c[:, act] @ r[act], rounds=rounds,
+                iterations=iterations, penetration=depth,
                 converged=new.size == 0,
             )  # fmt: skip
         pts = np.concatenate([pts, new])

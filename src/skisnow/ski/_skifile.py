@@ -1,7 +1,10 @@
 """Ski files: a :class:`~skisnow.ski.Ski` as a versioned, validated JSON document.
 
-Format ``skisnow-ski``, version 1. One JSON object; lengths in millimetres, stiffness in N m²,
-the unit in every key; x is measured from the balance point (x_mm = 0), positive toward the tip::
+Format ``skisnow-ski``, versions 1 and 2 (version 2 adds the optional fields of an identified
+ski's uncertainty, below; a ski without them is written as version 1, so every file of version
+1, the shipped skis among them, reads and writes unchanged). One JSON object; lengths in
+millimetres, stiffness in N m², the unit in every key; x is measured from the balance point
+(x_mm = 0), positive toward the tip::
 
     {
       "format": "skisnow-ski",
@@ -27,6 +30,12 @@ the unit in every key; x is measured from the balance point (x_mm = 0), positive
 * ``camber``: the free camber z0(x) [mm] (the unloaded base above the plane it rests on),
   interpolated by PCHIP; ``z0_sd_mm`` its optional standard deviation.
 * ``provenance.details``: scalar values only (numbers, text, true/false, null).
+* Version 2 (optional, an identified ski): ``stiffness.determined`` / ``camber.determined``, one
+  true/false per station: false where the bench the ski was identified from does *not
+  determine* EI / z0 (no load case bends the ski there, no station measures it; the band there
+  is the prior's width); ``stiffness.modes`` (log EI) and ``camber.modes_mm`` (z0 [mm]): k rows
+  of one value per station, the square root of the joint posterior (a sample of the ski adds
+  Σ ξ_i row_i with ξ_i ~ N(0, 1); :func:`~skisnow.ski.sample_skis`).
 
 Exact round trip. A length in metres is written as the shortest decimal that reads back to the
 same double (``repr``) with its decimal point moved by three places, and read back by moving the
@@ -55,6 +64,7 @@ from skisnow._atomic import atomic_write
 from skisnow._checks import check_array, check_value
 from skisnow._errors import FileFormatError, InputError
 from skisnow._json import load_json, read_json_file
+from skisnow.ski._skifile_v2 import read_uncertainty, write_uncertainty
 from skisnow.ski._skis import Provenance, Ski
 
 __all__ = [
@@ -70,8 +80,9 @@ __all__ = [
 
 #: The value of the ``format`` key of a ski file.
 SKI_FILE_FORMAT = "skisnow-ski"
-#: The version of the format written here (and the newest one read).
-SKI_FILE_VERSION = 1
+#: The newest version of the format, read and written (a ski without the fields of version 2
+#: is written as version 1).
+SKI_FILE_VERSION = 2
 
 _KEYS = (
     "format",
@@ -129,9 +140,20 @@ def _document(ski: Ski) -> dict[str, Any]:
     width_profile = None
     if ski.width_x is not None:
         width_profile = {"x_mm": _mm(ski.width_x), "width_mm": _mm(ski.width_values)}
+    stiffness: dict[str, Any] = {
+        "x_mm": _mm(ski.stiffness_x),
+        "ei_nm2": list(ski.stiffness_values),
+        "log_ei_sd": None if ski.stiffness_log_sd is None else list(ski.stiffness_log_sd),
+    }
+    camber: dict[str, Any] = {
+        "x_mm": _mm(ski.camber_x),
+        "z0_mm": _mm(ski.camber_values),
+        "z0_sd_mm": _mm(ski.camber_sd),
+    }
+    v2 = write_uncertainty(ski, stiffness, camber, _mm)
     return {
         "format": SKI_FILE_FORMAT,
-        "format_version": SKI_FILE_VERSION,
+        "format_version": 2 if v2 else 1,
         "name": ski.name,
         "kind": ski.kind,
         "x_tail_mm": _mm(ski.x_tail),
@@ -140,16 +162,8 @@ def _document(ski: Ski) -> dict[str, Any]:
         "width_profile": width_profile,
         "kick_zone_mm": _mm(ski.kick_zone),
         "boot_plate_mm": _mm(ski.boot_plate),
-        "stiffness": {
-            "x_mm": _mm(ski.stiffness_x),
-            "ei_nm2": list(ski.stiffness_values),
-            "log_ei_sd": None if ski.stiffness_log_sd is None else list(ski.stiffness_log_sd),
-        },
-        "camber": {
-            "x_mm": _mm(ski.camber_x),
-            "z0_mm": _mm(ski.camber_values),
-            "z0_sd_mm": _mm(ski.camber_sd),
-        },
+        "stiffness": stiffness,
+        "camber": camber,
         "description": ski.description,
         "provenance": {
             "method": prov.method,
@@ -171,6 +185,8 @@ def _encode(obj: Any, indent: int = 0) -> str:
         items = [f"{pad}{json.dumps(k)}: {_encode(v, indent + 1)}" for k, v in obj.items()]
         return "{\n" + ",\n".join(items) + "\n" + "  " * indent + "}"
     if isinstance(obj, list):
+        if all(isinstance(v, bool) for v in obj) and obj:
+            return "[" + ", ".join("true" if v else "false" for v in obj) + "]"
         if all(isinstance(v, _Mm | int | float) for v in obj):
             return "[" + ", ".join(_encode(v) for v in obj) + "]"
         inner = ",\n".join(pad + _encode(v, indent + 1) for v in obj)
@@ -334,7 +350,11 @@ def ski_from_document(doc: Any, *, where: str = "<document>") -> Ski:
                 "x_tail_mm (the length of the running surface)")  # fmt: skip
     r.plausible(width, "width", "width_mm")
 
-    st = r.mapping(doc["stiffness"], "stiffness", ("x_mm", "ei_nm2", "log_ei_sd"))
+    v2_keys = version >= 2
+    st = r.mapping(
+        doc["stiffness"], "stiffness",
+        ("x_mm", "ei_nm2", "log_ei_sd") + (("determined", "modes") if v2_keys else ()),
+    )  # fmt: skip
     ex, ei = r.stations(st, "stiffness", "ei_nm2", mm=False)
     for i, v in enumerate(ei):
         if not v > 0:
@@ -346,7 +366,10 @@ def ski_from_document(doc: Any, *, where: str = "<document>") -> Ski:
         if len(log_sd) != len(ex) or min(log_sd) < 0:
             raise r.fail("stiffness.log_ei_sd", f"needs {len(ex)} values >= 0 (one per station)")
         r.plausible(log_sd, "log_ei_sd", "stiffness.log_ei_sd", scale=1.0)
-    cb = r.mapping(doc["camber"], "camber", ("x_mm", "z0_mm", "z0_sd_mm"))
+    cb = r.mapping(
+        doc["camber"], "camber",
+        ("x_mm", "z0_mm", "z0_sd_mm") + (("determined", "modes_mm") if v2_keys else ()),
+    )  # fmt: skip
     cx, z0 = r.stations(cb, "camber", "z0_mm", mm=True)
     r.plausible(z0, "camber_height", "camber.z0_mm", span=True)  # span: heights in m?
     z_sd = None
@@ -356,6 +379,7 @@ def ski_from_document(doc: Any, *, where: str = "<document>") -> Ski:
             raise r.fail("camber.z0_sd_mm", f"needs {len(cx)} values >= 0 (one per station)")
         r.plausible(z_sd, "camber_sd", "camber.z0_sd_mm")
     r.plausible([ex[0], ex[-1], cx[0], cx[-1]], "x", "stiffness.x_mm, camber.x_mm (ends)")
+    det_e, det_z, modes_e, modes_z = read_uncertainty(r, st, cb, len(ex), len(cx))
     for field, xs in (("stiffness.x_mm", ex), ("camber.x_mm", cx)):
         if xs[0] > x_tail or xs[-1] < x_tip:
             raise r.fail(
@@ -427,6 +451,10 @@ def ski_from_document(doc: Any, *, where: str = "<document>") -> Ski:
             width_values=width_values,
             stiffness_log_sd=log_sd,
             camber_sd=z_sd,
+            stiffness_determined=det_e,
+            camber_determined=det_z,
+            stiffness_modes=modes_e,
+            camber_modes=modes_z,
             description=description,
             provenance=provenance,
         )

@@ -99,6 +99,13 @@ class Ski:
         stiffness_log_sd: optional standard deviation of log EI at ``stiffness_x`` (an
             identified ski's uncertainty; EI·exp(±2 sd) is its 95 % band).
         camber_sd: optional standard deviation [m] of z0 at ``camber_x``.
+        stiffness_determined, camber_determined: optional flags per station of ``stiffness_x``
+            / ``camber_x``: whether the data the ski was identified from determine EI / z0
+            there (False: *not determined by this bench*, the band is the prior's width).
+        stiffness_modes, camber_modes: optional square root of the joint posterior of log EI
+            and z0 [m] at the stations (k modes each, the same k): a sample of the ski is
+            log EI + Σ ξ_i stiffness_modes[i], z0 + Σ ξ_i camber_modes[i], ξ_i ~ N(0, 1)
+            (:func:`~skisnow.ski.sample_skis`).
         description: where the numbers come from — free text.
         provenance: how the ski was made, from what data (:class:`Provenance`).
 
@@ -121,6 +128,14 @@ class Ski:
     width_values: tuple[float, ...] | None = None
     stiffness_log_sd: tuple[float, ...] | None = None
     camber_sd: tuple[float, ...] | None = None
+    stiffness_determined: tuple[bool, ...] | None = field(default=None, compare=False)
+    camber_determined: tuple[bool, ...] | None = field(default=None, compare=False)
+    stiffness_modes: tuple[tuple[float, ...], ...] | None = field(
+        default=None, compare=False, repr=False
+    )
+    camber_modes: tuple[tuple[float, ...], ...] | None = field(
+        default=None, compare=False, repr=False
+    )
     description: str = field(default="", compare=False)
     provenance: Provenance = field(default_factory=Provenance, compare=False)
 
@@ -195,6 +210,40 @@ class Ski:
                     f"({len(getattr(self, ref))}), got {len(sd)}"
                 )
             object.__setattr__(self, name, sd)
+        for name, ref in (
+            ("stiffness_determined", "stiffness_x"),
+            ("camber_determined", "camber_x"),
+        ):
+            flags = getattr(self, name)
+            if flags is None:
+                continue
+            flags = tuple(bool(v) for v in flags)
+            if len(flags) != len(getattr(self, ref)):
+                raise InputError(
+                    f"Ski {self.name!r}: {name} needs one flag per station of {ref} "
+                    f"({len(getattr(self, ref))}), got {len(flags)}"
+                )
+            object.__setattr__(self, name, flags)
+        if (self.stiffness_modes is None) != (self.camber_modes is None):
+            raise InputError(
+                f"Ski {self.name!r}: give stiffness_modes and camber_modes, or neither"
+            )
+        if self.stiffness_modes is not None and self.camber_modes is not None:
+            me = np.asarray(self.stiffness_modes, dtype=float)
+            mz = np.asarray(self.camber_modes, dtype=float)
+            ok = (
+                me.ndim == 2 and mz.ndim == 2 and me.shape[0] == mz.shape[0]
+                and me.shape[1] == len(self.stiffness_x) and mz.shape[1] == len(self.camber_x)
+                and np.all(np.isfinite(me)) and np.all(np.isfinite(mz))
+            )  # fmt: skip
+            if not ok:
+                raise InputError(
+                    f"Ski {self.name!r}: stiffness_modes and camber_modes need k rows each, of "
+                    f"{len(self.stiffness_x)} and {len(self.camber_x)} finite values (one per "
+                    f"station), got shapes {me.shape} and {mz.shape}"
+                )
+            object.__setattr__(self, "stiffness_modes", tuple(map(tuple, me.tolist())))
+            object.__setattr__(self, "camber_modes", tuple(map(tuple, mz.tolist())))
         if not isinstance(self.provenance, Provenance):
             raise InputError(f"Ski {self.name!r}: provenance must be a Provenance")
 
@@ -202,6 +251,22 @@ class Ski:
     def length(self) -> float:
         """Length of the running surface [m] (x_tip - x_tail)."""
         return self.x_tip - self.x_tail
+
+    def determined_span(self, what: Literal["stiffness", "camber"] = "stiffness"):
+        """``(start, end)`` [m] of the stations where the data determine EI (``'stiffness'``)
+        or z0 (``'camber'``), the first to the last such station; ``None`` when the ski
+        carries no such flags (a definition, not an identification), and also ``None`` when
+        no station is determined."""
+        flags = getattr(self, f"{what}_determined")
+        if flags is None:
+            return None
+        x = np.asarray(getattr(self, f"{what}_x"))[np.asarray(flags, dtype=bool)]
+        return None if x.size == 0 else (float(x[0]), float(x[-1]))
+
+    @property
+    def has_posterior(self) -> bool:
+        """Whether the ski carries the square root of its posterior (samples can be drawn)."""
+        return self.stiffness_modes is not None
 
     def summary_mm(self) -> dict[str, Any]:
         """Name, kind and running-surface geometry in the units of tables and files (mm).
