@@ -295,6 +295,10 @@ QUANTITIES: dict[str, Quantity] = {
         name="random seed", unit="(integer)", low=0.0, high=2.0**63 - 1,
         plausible=(0.0, 2.0**63 - 1), integer=True, typical=0.0,
     ),
+    "beam_element_length": Quantity(
+        name="element length of a beam mesh", unit="mm", low=0.0, low_open=True, high=100.0,
+        high_open=True, plausible=(0.5, 50.0), alternatives=(_M,), typical=10.0,
+    ),
     "spline_coefficients": Quantity(
         name="number of spline coefficients", unit="(count)", low=2.0, plausible=(2.0, 4000.0),
         integer=True, typical=50.0,

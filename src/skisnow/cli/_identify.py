@@ -12,12 +12,12 @@ from skisnow._errors import InputError
 from skisnow.cli._app import app, report_converged
 from skisnow.cli._render import (
     JsonOption,
-    NCamberOption,
     NStiffnessOption,
     RegularisationOption,
     emit_json,
     print_table,
 )
+from skisnow.cli._render import say as _say
 
 
 @app.command()
@@ -41,8 +41,22 @@ def identify(
         typer.Option("--noise-mm", help="Bench noise [mm] (default: estimated from the data)."),
     ] = None,
     regularisation: RegularisationOption = None,
-    n_stiffness: NStiffnessOption = 14,
-    n_camber: NCamberOption = 100,
+    n_stiffness: NStiffnessOption = 60,
+    n_camber: Annotated[
+        int | None,
+        typer.Option(
+            "--n-camber",
+            help="Spline coefficients of z0(x) (default: knots at the station spacing, 10-20 mm).",
+        ),
+    ] = None,
+    mesh_mm: Annotated[
+        float | None,
+        typer.Option(
+            "--mesh-mm",
+            help="Element length of the fit's beam [mm] (default 10; contact resolved between "
+            "nodes; the discretisation error is estimated and reported).",
+        ),
+    ] = None,
     max_nfev: Annotated[
         int, typer.Option("--max-nfev", help="Evaluation limit of each stage of the fit.")
     ] = 60,
@@ -64,13 +78,14 @@ def identify(
 
     # the fit's Jacobian: one row per bench sample, one column per spline coefficient
     rows = len(bench.table)
-    check_memory(8.0 * rows * (n_stiffness + n_camber) * 4, where="--n-stiffness, --n-camber",
-                 what=f"a fit of {rows:,} samples x {n_stiffness + n_camber} coefficients",
+    n_coef = n_stiffness + (n_camber or 200)
+    check_memory(8.0 * rows * n_coef * 4, where="--n-stiffness, --n-camber",
+                 what=f"a fit of {rows:,} samples x {n_coef} coefficients",
                  hint="use fewer coefficients")  # fmt: skip
 
     def say(msg: str) -> None:
         if not json_out:
-            say(msg, style="dim")
+            _say(msg, style="dim")
 
     res = identify_ski(
         bench,
@@ -82,6 +97,7 @@ def identify(
         regularisation=regularisation,
         n_stiffness=n_stiffness,
         n_camber=n_camber,
+        element_length=None if mesh_mm is None else mesh_mm * 1e-3,
         max_nfev=max_nfev,
         progress=say,
         source=str(bench_file),
@@ -104,8 +120,30 @@ def identify(
         "residual_rms_mm": res.residual_rms * 1e3,
         "regularisation": res.regularisation,
         "criterion": res.criterion,
-        "converged": res.converged and res.at_noise,
+        "converged": res.converged,
         "misfit_rms_sigma": res.misfit,
+        "chi2_bound": res.chi2_bound,
+        "causes": list(res.causes),
+        "mesh_mm": res.mesh_error[2] * 1e3,
+        "mesh_error_rms_um": res.mesh_error[0] * 1e6,
+        "mesh_error_max_um": res.mesh_error[1] * 1e6,
+        "determined_ei_mm": res.ski.provenance.detail("determined_ei_mm"),
+        "determined_z0_mm": res.ski.provenance.detail("determined_z0_mm"),
+        "bands": "95 % = 2 sd of the Laplace posterior (noise, prior, discretisation error)",
+        "outliers": [
+            {
+                "mass_kg": m,
+                "load_position_mm": p * 1e3,
+                "x_mm": x * 1e3,
+                "residual_mm": d * 1e3,
+                "sigma": z,
+            }
+            for m, p, x, d, z in res.outliers
+        ],
+        "noise_per_case": [
+            {"mass_kg": m, "load_position_mm": p * 1e3, "noise_mm": s * 1e3, "misfit_sigma": f}
+            for m, p, s, f in res.noise_cases
+        ],
         "message": res.message,
         "warnings": list(res.warnings),
         "seconds": res.seconds,
@@ -113,13 +151,14 @@ def identify(
             {"lambda": lam, "gcv": g, "misfit_rms_sigma": m, "edf": e} for lam, g, m, e in res.gcv
         ],
     }
-    report_converged(res.converged and res.at_noise)  # exit code 3 when not
+    report_converged(res.converged)  # exit code 3 when not (the warnings name the cause)
     if json_out:
         emit_json(doc)
         return
     for w in res.warnings:
-        say(f"warning: {w}", style="yellow")
-    rows = [[k, v] for k, v in doc.items() if k not in ("gcv", "warnings")]
+        _say(f"warning: {w}", style="yellow")
+    skip = ("gcv", "warnings", "outliers", "noise_per_case")
+    rows = [[k, v] for k, v in doc.items() if k not in skip]
     print_table("Identified ski (passport: skisnow skis --show FILE)", ["", "value"], rows)
     print_table(
         "Regularisation (GCV)",

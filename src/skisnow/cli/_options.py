@@ -59,6 +59,7 @@ OPTION_QUANTITIES: dict[str, str] = {
     "--n-stiffness": "spline_coefficients",
     "--n-camber": "spline_coefficients",
     "--max-nfev": "evaluations",
+    "--mesh-mm": "beam_element_length",
     "--target-ei-percent": "percent",
     "--target-z0-um": "noise_um",
     "--temperature-c": "temperature",

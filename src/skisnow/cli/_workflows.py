@@ -429,16 +429,25 @@ def pairs(
             "load_moved_percent": d.load_moved * 100,
             "poor_match": result.poor((a, b, d)),
             "worst": worst is not None and (a, b) == worst[:2],
+            "tie_within_uncertainty": d.within_uncertainty,
+            "compared_mm": None if d.compared is None else [v * 1e3 for v in d.compared],
         }
         for a, b, d in result.pairs
     ]
+    pair_warnings = [f"{s}: {w}" for s, w in result.warnings] + [
+        f"{r['ski_a']} / {r['ski_b']}: distance {r['distance']:.3g} but a tie within uncertainty "
+        "(the differences lie within the combined 95 % bands: the benches cannot tell them apart)"
+        for r in records if r["tie_within_uncertainty"] and r["poor_match"]
+    ]  # fmt: skip
     definition = (
         f"d = sqrt((rms dz0 / {CAMBER_TOLERANCE * 1e3:g} mm)^2 + (rms dlnEI / "
         f"{STIFFNESS_TOLERANCE:g})^2 + (load moved / {CONTACT_TOLERANCE:g})^2); load moved = "
         f"half the integral of |q_a - q_b| over the load, at {body_mass_kg:g} kg on "
         f"{snow_modulus_mpa:g} MPa snow, load at {load_position_mm:g} mm from the balance point; "
         f"a poor match: d > {POOR_MATCH_DISTANCE:g} (the skis differ by more than the "
-        "tolerances); the worst: the poor match of largest d"
+        "tolerances); the worst: the poor match of largest d; camber and stiffness compared "
+        "only where both skis are determined by their data (identified skis); a tie within "
+        "uncertainty: the differences within the combined 95 % bands at 95 % of the stations"
     )
     matrix = [
         {"ski": s, **{t: float(result.distances[i, j]) for j, t in enumerate(result.skis)}}
@@ -463,6 +472,7 @@ def pairs(
                 "distances": matrix,
                 "failures": [{"ski": s, "error": m} for s, m in result.failures],
                 "files": files,
+                "warnings": pair_warnings,
             }
         )
     else:
@@ -477,12 +487,15 @@ def pairs(
                     r["camber_term"],
                     r["stiffness_term"],
                     r["contact_term"],
-                    "WORST" if r["worst"] else ("poor" if r["poor_match"] else ""),
+                    ("WORST" if r["worst"] else ("poor" if r["poor_match"] else ""))
+                    + (" (tie within uncertainty)" if r["tie_within_uncertainty"] else ""),
                 ]
                 for r in records
             ],
         )
         console.print(definition)
+        for w in pair_warnings:
+            show(f"warning: {w}")
         if result.spare:
             show(f"spare (odd fleet): {result.spare}")
         for f in files:

@@ -7,7 +7,7 @@ Otherwise the warning names the cause, checked in this order (the first that app
 main cause; every one that applies is listed):
 
 * ``mesh``: the discretisation error (:mod:`skisnow.identify._mesh_error`) is above a fifth of
-  the noise — a finer beam (``element_length``, ``--beam-elements``) is needed;
+  the noise — a finer beam (``element_length``, ``--mesh-mm``) is needed;
 * ``noise``: the given noise differs from the noise the profiles show by more than a factor 1.5,
   or the load cases' own misfits are not at their noise (some above 1.5 σ while the rest are
   at the noise: their noise is underestimated, or they hold readings the others do not);
@@ -79,7 +79,7 @@ def diagnose(
         warnings.append(
             f"model/mesh error: the beam's discretisation error is {mesh_rms * 1e6:.2g} µm rms "
             f"against a bench noise of {noise * 1e6:.2g} µm (more than a fifth of it); use "
-            f"shorter elements than {element_length * 1e3:.3g} mm (--beam-elements / "
+            f"shorter elements than {element_length * 1e3:.3g} mm (--mesh-mm / "
             "element_length)"
         )
     if noise_given is not None and not 1 / 1.5 <= noise_given / max(noise_data, 1e-12) <= 1.5:

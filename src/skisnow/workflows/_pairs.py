@@ -13,6 +13,16 @@ each a difference divided by a stated practitioner tolerance:
   the day's snow; 0 identical, 1 disjoint), divided by :data:`CONTACT_TOLERANCE` (0.1).
 
 d_ij = sqrt(d_camber² + d_stiffness² + d_contact²) (one unit = "as different as the tolerance").
+
+Skis identified from a bench (issue 25) carry which stations their bench determines and the
+bands there: camber and stiffness are compared only where both skis are determined (beyond the
+outermost contacts of a bench no load bends the ski, and its EI there is the prior's guess, not a
+measurement), and a pair is *a tie within uncertainty* (``within_uncertainty``) when at 95 % of
+the compared stations the differences of log EI and of z0 lie within their combined 95 % band,
+2 (sd_i² + sd_j²)^1/2 (the bands of the Laplace posterior, :func:`skisnow.identify.identify_ski`;
+a ski without bands, a shipped definition, counts with a zero band). A distance above the
+tolerances that is a tie within uncertainty says that the benches cannot tell the skis apart,
+not that they differ.
 A pair is a *poor match* when its distance exceeds :data:`POOR_MATCH_DISTANCE` (1: together, the
 two skis differ by more than one tolerance); the *worst* pair is the poor match of largest
 distance — never a pair tied with the best one, and none at all when every pair is within the
@@ -67,6 +77,11 @@ class PairDistance:
     camber_rms: float  # [m]
     stiffness_rms: float  # rms of ln EI difference
     load_moved: float  # fraction of the load carried at different places
+    #: whether the camber and stiffness differences are within the skis' combined 95 % bands at
+    #: 95 % of the compared stations (``None``: neither ski carries bands)
+    within_uncertainty: bool | None = None
+    #: ``(start, end)`` [m] of the compared stations (both skis determined there)
+    compared: tuple[float, float] | None = None
 
     @property
     def total(self) -> float:
@@ -79,6 +94,9 @@ class _Curves:
     x: np.ndarray  # common grid
     z0: np.ndarray
     log_ei: np.ndarray
+    sd_z0: np.ndarray | None  # bands on the grid (None: a ski without bands)
+    sd_log_ei: np.ndarray | None
+    determined: np.ndarray  # stations where both EI and z0 are determined by the data
     line_load_x: np.ndarray
     line_load: np.ndarray  # [N/m]
     load: float
@@ -102,10 +120,21 @@ def _curves(
         route=route,
     ).solution
     grid = np.arange(np.ceil(ski.x_tail / _DX), np.floor(ski.x_tip / _DX) + 1) * _DX
+    determined = np.ones(grid.size, dtype=bool)
+    for what in ("stiffness", "camber"):
+        span = ski.determined_span(what)
+        if getattr(ski, f"{what}_determined") is not None:
+            determined &= (
+                np.zeros(grid.size, bool) if span is None else (grid >= span[0]) & (grid <= span[1])
+            )
+    has_bands = ski.stiffness_log_sd is not None and ski.camber_sd is not None
     return _Curves(
         x=grid,
         z0=ski.free_camber(grid),
         log_ei=np.log(ski.stiffness(grid)),
+        sd_z0=np.interp(grid, ski.camber_x, ski.camber_sd) if has_bands else None,
+        sd_log_ei=np.interp(grid, ski.stiffness_x, ski.stiffness_log_sd) if has_bands else None,
+        determined=determined,
         line_load_x=x,
         line_load=sol.line_load,
         load=body_mass * STANDARD_GRAVITY,
@@ -119,10 +148,26 @@ def _distance(a: _Curves, b: _Curves) -> PairDistance:
     ia = (a.x >= lo - 1e-9) & (a.x <= hi + 1e-9)
     ib = (b.x >= lo - 1e-9) & (b.x <= hi + 1e-9)
     n = min(ia.sum(), ib.sum())
-    dz = a.z0[ia][:n] - b.z0[ib][:n]
-    dk = a.log_ei[ia][:n] - b.log_ei[ib][:n]
+    both = a.determined[ia][:n] & b.determined[ib][:n]
+    if both.sum() < 0.5 / _DX:
+        raise InputError(
+            "two skis are both determined by their data over less than 0.5 m of running surface "
+            "(stations beyond a bench's outermost contacts are not determined by it)"
+        )
+    xs = a.x[ia][:n][both]
+    dz = (a.z0[ia][:n] - b.z0[ib][:n])[both]
+    dk = (a.log_ei[ia][:n] - b.log_ei[ib][:n])[both]
     camber_rms = float(np.sqrt(np.mean(dz**2)))
     stiff_rms = float(np.sqrt(np.mean(dk**2)))
+    within = None
+    if a.sd_z0 is not None or b.sd_z0 is not None:
+
+        def band(c: _Curves, sd: np.ndarray | None, ic: np.ndarray) -> np.ndarray:
+            return np.zeros(int(both.sum())) if sd is None else sd[ic][:n][both]
+
+        bz = 2 * np.hypot(band(a, a.sd_z0, ia), band(b, b.sd_z0, ib))
+        bk = 2 * np.hypot(band(a, a.sd_log_ei, ia), band(b, b.sd_log_ei, ib))
+        within = bool(np.mean(np.abs(dz) <= bz) >= 0.95 and np.mean(np.abs(dk) <= bk) >= 0.95)
     # line loads on one grid spanning both skis (zero off a ski)
     grid = np.linspace(
         min(a.line_load_x[0], b.line_load_x[0]),
@@ -140,6 +185,8 @@ def _distance(a: _Curves, b: _Curves) -> PairDistance:
         camber_rms=camber_rms,
         stiffness_rms=stiff_rms,
         load_moved=moved,
+        within_uncertainty=within,
+        compared=(float(xs[0]), float(xs[-1])),
     )
 
 
@@ -185,6 +232,9 @@ class Pairing:
         The full symmetric matrix of total distances (skis × skis).
     failures
         ``(spec, message)`` of skis that could not be read or solved.
+    warnings
+        ``(ski, message)``: what the identification of a bench file said about its ski (issue
+        25: a fit above the noise and its cause, stretches its bench does not determine).
     """
 
     skis: tuple[str, ...]
@@ -192,6 +242,7 @@ class Pairing:
     spare: str | None
     distances: np.ndarray
     failures: tuple[tuple[str, str], ...]
+    warnings: tuple[tuple[str, str], ...] = ()
 
     @property
     def worst(self) -> tuple[str, str, PairDistance] | None:
@@ -303,4 +354,5 @@ def match_pairs(
         spare=spare,
         distances=matrix,
         failures=tuple(failures),
+        warnings=tuple((fs.label, w) for fs in ok for w in fs.warnings),
     )

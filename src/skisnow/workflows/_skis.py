@@ -28,12 +28,16 @@ class FleetSki:
     network
         The shipped camber network's name when one exists for this ski (the paper's
         network route), else ``None`` (the beam route is used).
+    warnings
+        What the identification of a bench file said about its result (not at the noise, the
+        cause, stretches the bench does not determine); empty otherwise.
     """
 
     label: str
     ski: Ski
     origin: str
     network: str | None = None
+    warnings: tuple[str, ...] = ()
 
 
 def resolve_ski(spec: str | Ski | FleetSki) -> FleetSki:
@@ -73,7 +77,8 @@ def resolve_ski(spec: str | Ski | FleetSki) -> FleetSki:
             )
         # EI(x) and z0(x) identified from the whole bench sequence (skisnow.identify.identify_ski)
         result = identify_ski(bench, source=str(path))
-        return FleetSki(label=path.name, ski=result.ski, origin="bench file (identified)")
+        return FleetSki(label=path.name, ski=result.ski, origin="bench file (identified)",
+                        warnings=result.warnings)  # fmt: skip
     ski = get_ski(str(path))
     # a file holding a shipped ski's content (whatever its name) may use that ski's network
     from skisnow.pipeline import shipped_twin
