@@ -138,7 +138,7 @@ def contact_error(ski, true) -> float:
 
 
 def run_one(args: tuple) -> dict:
-    name, plan, noise_um, cache, with_contact, dx_mm = args
+    name, plan, noise_um, cache, with_contact, dx_mm, n_stiffness = args
     from skisnow.identify import identify_ski
 
     true = true_ski(name)
@@ -146,7 +146,7 @@ def run_one(args: tuple) -> dict:
     t0 = time.process_time()
     w0 = time.perf_counter()
     try:
-        res = identify_ski(bench)
+        res = identify_ski(bench, **({} if n_stiffness is None else {"n_stiffness": n_stiffness}))
     except Exception as exc:
         return {"ski": name, "plan": plan, "noise": noise_um, "error": repr(exc)[:120]}
     cpu, wall = time.process_time() - t0, time.perf_counter() - w0
@@ -183,12 +183,17 @@ def main() -> None:
         help="the skis fixed after development (seeds 1001-1003) and issue 25's ski",
     )
     ap.add_argument("--contact", action="store_true", help="also the contact comparison")
+    ap.add_argument("--n-stiffness", type=int, default=None,
+                    help="log-EI coefficients (default: identify_ski's)")  # fmt: skip
     ap.add_argument("--dx-mm", type=float, default=1.0,
                     help="grid of the reference bench [mm] (issue 25: 1 mm)")  # fmt: skip
     a = ap.parse_args()
     skis = [*map(str, VALIDATION_SEEDS), "issue25"] if a.validation else _skis(a.skis)
     jobs = [
-        (s, p, n, a.cache, a.contact, a.dx_mm) for s in skis for p in a.plans for n in a.noise_um
+        (s, p, n, a.cache, a.contact, a.dx_mm, a.n_stiffness)
+        for s in skis
+        for p in a.plans
+        for n in a.noise_um
     ]
     print(f"load average at start: {os.getloadavg()}")
     cols = [
