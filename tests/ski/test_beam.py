@@ -114,11 +114,11 @@ CASES = [
 
 @pytest.mark.parametrize(("name", "mass", "pos"), CASES)
 def test_balance_and_complementarity(name: str, mass: float, pos: float) -> None:
-    # Contact resolved between nodes (the default): complementarity at every contact point (h =
+    # Contact resolved between nodes: complementarity at every contact point (h =
     # 0 there, r >= 0), no penetration anywhere along the ski beyond the stated tolerance, both
     # balances on the point forces and on their lumped nodal forces.
     ski = get_ski(name)
-    sol = solve_beam(ski, mass=mass, load_position=pos)
+    sol = solve_beam(ski, mass=mass, load_position=pos, contact="continuous")
     force = mass * STANDARD_GRAVITY
     assert sol.converged and sol.contact == "continuous"
     for r, x in ((sol.point_reactions, sol.contact_points), (sol.reactions, sol.x)):
@@ -180,9 +180,9 @@ def test_mesh_refinement_converges() -> None:
     # 4.8 µm at 400 elements, 13.8 µm at 50), non-monotone in the mesh.
     ski = get_ski("skate")
     x = np.linspace(ski.x_tail, ski.x_tip, 2001)
-    ref = solve_beam(ski, mass=32.5, load_position=-0.08, n_elements=1600)
+    ref = solve_beam(ski, mass=32.5, load_position=-0.08, n_elements=1600, contact="continuous")
     for n in (200, 400):
-        sol = solve_beam(ski, mass=32.5, load_position=-0.08, n_elements=n)
+        sol = solve_beam(ski, mass=32.5, load_position=-0.08, n_elements=n, contact="continuous")
         assert np.max(np.abs(sol.sample(x) - ref.sample(x))) < 0.5e-6
     nodal = solve_beam(ski, mass=32.5, load_position=-0.08, contact="nodal")
     assert np.max(np.abs(nodal.sample(x) - ref.sample(x))) > 2e-6
