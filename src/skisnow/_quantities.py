@@ -231,10 +231,8 @@ QUANTITIES: dict[str, Quantity] = {
         name="standard deviation of log EI", unit="(log units)", low=0.0, plausible=(0.0, 3.0),
         typical=0.05,
     ),
-    # up to 30 mm: where the bench does not determine z0 an identified ski carries the width of
-    # its prior there (10 mm, skisnow.identify._model.PRIOR_Z0_SD), a little more with the data
     "camber_sd": Quantity(
-        name="standard deviation of the free camber", unit="mm", low=0.0, plausible=(0.0, 30.0),
+        name="standard deviation of the free camber", unit="mm", low=0.0, plausible=(0.0, 10.0),
         alternatives=(_UM_IN_MM,), typical=0.01,
     ),
     # -- load histories (skisnow.workflows)

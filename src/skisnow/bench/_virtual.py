@@ -11,6 +11,7 @@ ski, each sampled every 1 mm over the whole running surface (a bench-like step).
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
+from typing import Literal
 
 import numpy as np
 import pandas as pd
@@ -63,6 +64,7 @@ def run_bench(
     progress: Callable[[int, int], None] | None = None,
     boot_length: float = DEFAULT_BOOT_LENGTH,
     n_elements: int = DEFAULT_N_ELEMENTS,
+    contact: Literal["continuous", "nodal"] = "nodal",
 ) -> BenchData:
     """Run the virtual camber bench on ``ski`` and return the tidy bench table.
 
@@ -85,8 +87,10 @@ def run_bench(
         seed of the noise generator (NumPy ``default_rng``).
     progress
         called as ``progress(done, total)`` after each profile (e.g. a Rich bar).
-    boot_length, n_elements
-        passed to :func:`~skisnow.ski.solve_beam`.
+    boot_length, n_elements, contact
+        passed to :func:`~skisnow.ski.solve_beam` (``contact='continuous'``: no dip through the
+        stone between nodes, the beam of the identification; the default ``'nodal'`` is
+        :func:`~skisnow.ski.solve_beam`'s, whose numbers the bench reproduces exactly).
 
     Returns
     -------
@@ -121,7 +125,7 @@ def run_bench(
                 boot_length=boot_length,
                 n_elements=n_elements,
                 warm_start=prev,
-                contact="continuous",  # a bench: no dip through the stone between nodes
+                contact=contact,
             )
             heights[i, j] = sol.sample(x)
             prev = sol

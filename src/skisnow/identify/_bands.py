@@ -37,6 +37,9 @@ __all__ = ["Posterior", "identified_profiles", "posterior"]
 #: Posterior over prior standard deviation below which a station is determined by the bench.
 DETERMINED_RATIO = 0.5
 
+#: Largest z0 band written [m] (the plausible range of a ski file's camber band).
+_Z0_SD_CAP = 9.99e-3
+
 #: Stations of the identified ski: EI every 20 mm, z0 every 5 mm.
 _EI_STEP, _Z0_STEP = 0.02, 0.005
 
@@ -158,7 +161,9 @@ def identified_profiles(
     det_e = (sd_e < DETERMINED_RATIO * prior_e) & (ex >= bent[0]) & (ex <= bent[1])
     det_z = (sd_zz < DETERMINED_RATIO * prior_z) & (cx >= measured[0]) & (cx <= measured[1])
     sd_e = np.where(det_e, sd_e, np.maximum(sd_e, prior_e))
-    sd_zz = np.where(det_z, sd_zz, np.maximum(sd_zz, prior_z))
+    # the prior's width where not determined, capped at the ski file's plausible camber band
+    # (10 mm, skisnow._quantities 'camber_sd': a camber is 0-5 mm, so 10 mm says "unknown")
+    sd_zz = np.minimum(np.where(det_z, sd_zz, np.maximum(sd_zz, prior_z)), _Z0_SD_CAP)
     # the posterior's square root at the stations, by singular values
     rows = np.concatenate([be, tz])
     w, v = np.linalg.eigh(0.5 * (post.covariance + post.covariance.T))
