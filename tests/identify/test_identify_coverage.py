@@ -39,7 +39,7 @@ def _coverage(res, true) -> tuple[float, float, int, int]:
 @pytest.mark.xfail(
     reason="issue 25's target (90-98 % of determined stations inside the 95 % bands) is not "
     "reached: benchmarks/bench_identify_coverage.py measures it (docs/validation/"
-    "identification.md has the table)",
+    "identification-uncertainty.md has the tables)",
     strict=False,
 )
 def test_bands_cover_the_truth_on_independent_benches() -> None:
