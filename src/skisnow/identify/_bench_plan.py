@@ -285,8 +285,9 @@ def predict_identification_uncertainty(
 
     from skisnow.bench import run_bench
 
+    # the fit's beam: contact resolved between nodes (issue 25)
     bench = run_bench(ski, masses=ms, load_positions=ps, dx=dx, boot_length=boot_length,
-                      n_elements=n_elements)  # fmt: skip
+                      n_elements=n_elements, contact="continuous")  # fmt: skip
     problem = plan_problem(
         ski, bench, noise, stations=None if stations is None else (lo, hi),
         bin_width=bin_width, n_stiffness=n_stiffness, n_camber=n_camber,
