@@ -434,11 +434,7 @@ def pairs(
         }
         for a, b, d in result.pairs
     ]
-    pair_warnings = [f"{s}: {w}" for s, w in result.warnings] + [
-        f"{r['ski_a']} / {r['ski_b']}: distance {r['distance']:.3g} but a tie within uncertainty "
-        "(the differences lie within the combined 95 % bands: the benches cannot tell them apart)"
-        for r in records if r["tie_within_uncertainty"] and r["poor_match"]
-    ]  # fmt: skip
+    pair_warnings = result.messages()  # the identifications' warnings, ties above the tolerance
     definition = (
         f"d = sqrt((rms dz0 / {CAMBER_TOLERANCE * 1e3:g} mm)^2 + (rms dlnEI / "
         f"{STIFFNESS_TOLERANCE:g})^2 + (load moved / {CONTACT_TOLERANCE:g})^2); load moved = "

@@ -260,6 +260,19 @@ class Pairing:
         """Whether ``pair`` is a poor match (distance above :data:`POOR_MATCH_DISTANCE`)."""
         return pair[2].total > POOR_MATCH_DISTANCE
 
+    def messages(self) -> list[str]:
+        """The warnings of the pairing: what the identification of each bench file said, and
+        every poor match that is a tie within uncertainty (the benches cannot tell the two
+        skis apart: the distance is not a difference)."""
+        out = [f"{s}: {w}" for s, w in self.warnings]
+        out += [
+            f"{a} / {b}: distance {d.total:.3g} but a tie within uncertainty (the differences "
+            "lie within the combined 95 % bands: the benches cannot tell them apart)"
+            for a, b, d in self.pairs
+            if d.within_uncertainty and self.poor((a, b, d))
+        ]
+        return out
+
     @property
     def total(self) -> float:
         """Sum of the pair distances (what the matching minimises)."""
