@@ -43,6 +43,9 @@ def test_ctrl_c_while_the_bar_starts_leaves_it_closable(monkeypatch) -> None:
         return real(self, live)
 
     monkeypatch.setattr(Console, "set_live", set_live)
+    # Python's own Ctrl-C handler even where the test runner was started with SIGINT ignored
+    # (a background job of a shell without job control, nohup)
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
     bar = progress_bar("interrupted", transient=True)
     try:
         bar(1, 10)
@@ -50,6 +53,8 @@ def test_ctrl_c_while_the_bar_starts_leaves_it_closable(monkeypatch) -> None:
         interrupted = True
     else:
         interrupted = False
+    finally:
+        signal.signal(signal.SIGINT, previous)
     monkeypatch.undo()
     bar.close()
     assert interrupted

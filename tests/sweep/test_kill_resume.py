@@ -55,6 +55,9 @@ def _interrupt(
         stderr=subprocess.PIPE,
         text=True,
         start_new_session=True,  # its own process group, like a terminal job with its workers
+        # Ctrl-C must reach it even where the test runner itself ignores SIGINT (a background
+        # job of a shell without job control, nohup): ignored signals are inherited
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
     )
     try:
         deadline = time.monotonic() + 120
