@@ -21,7 +21,7 @@ from typing import Any, Literal
 import numpy as np
 from numpy.typing import NDArray
 
-from skisnow.ski import Provenance, Ski
+from skisnow.ski import Provenance, Ski, rest_on_plane
 
 __all__ = ["RANGES", "issue25_ski", "plausible_ski", "random_ski"]
 
@@ -53,21 +53,6 @@ def _bump(x: NDArray[np.float64], start: float, end: float, power: float) -> NDA
 def _step(x: NDArray[np.float64], at: float, width: float) -> NDArray[np.float64]:
     """0 → 1 across ``at`` over about ``width`` (10-90 %)."""
     return 0.5 * (1.0 + np.tanh(2.2 * (x - at) / max(width, 1e-6)))
-
-
-def _rest_on_plane(x: NDArray[np.float64], z: NDArray[np.float64]) -> NDArray[np.float64]:
-    hull: list[int] = []
-    for i in range(x.size):
-        while len(hull) >= 2:
-            i0, i1 = hull[-2], hull[-1]
-            if (x[i1] - x[i0]) * (z[i] - z[i0]) - (z[i1] - z[i0]) * (x[i] - x[i0]) <= 0.0:
-                hull.pop()
-            else:
-                break
-        hull.append(i)
-    k = int(np.clip(np.searchsorted(x[hull], 0.0, side="right") - 1, 0, len(hull) - 2))
-    i, j = hull[k], hull[k + 1]
-    return z - (z[i] + (z[j] - z[i]) * (x - x[i]) / (x[j] - x[i]))
 
 
 def plausible_ski(
@@ -125,7 +110,7 @@ def plausible_ski(
     kick = (rear_support + 0.3 * span, front_support - 0.3 * span) if kind == "classic" else None
     return Ski(
         name=name, kind=kind, x_tail=x_tail, x_tip=x_tip, width=0.044,
-        stiffness_x=ex, stiffness_values=ei, camber_x=x, camber_values=_rest_on_plane(x, z),
+        stiffness_x=ex, stiffness_values=ei, camber_x=x, camber_values=rest_on_plane(x, z),
         kick_zone=kick, boot_plate=(-0.30, 0.0),
         description=description or "synthetic ski (skisnow.bench.plausible_ski)",
         provenance=Provenance(method="synthetic (skisnow.bench.plausible_ski)",

@@ -267,6 +267,8 @@ def _write_reproduction(doc: dict, path: Path) -> Path:
 
     kind = doc["ski"]
     rows = doc["captions"]
+    # the same fields as the plausible skis' provenance above, stated for a reproduction ski
+    # (its own method and data lines): a record per kind of ski, not shared logic
     provenance = Provenance(
         method="calibrated: reproduction ski, a spline ski fitted to the captions of "
         "Kalliorinne et al. (2023), Figs. 4-7, alone (skisnow calibrate --reproduction: "

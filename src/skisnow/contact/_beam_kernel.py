@@ -84,6 +84,8 @@ def half_generators(
         v[i] = s2 - di * s1
 
 
+# numba kernels take no closures or callbacks cheaply: the strided station loop of
+# cantilever_apply_strided is repeated here around the boot's load, on purpose
 @numba.njit(cache=True, nogil=True)
 def boot_deflect_strided(
     q: float,

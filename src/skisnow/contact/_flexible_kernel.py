@@ -81,6 +81,8 @@ def gather_block(k: np.ndarray, index: np.ndarray, out: np.ndarray) -> None:  # 
             dst[j] = row[index[j]]
 
 
+# the argument list of coupled_block, repeated on purpose: a compiled kernel per operator
+# block (numba kernels take no closures cheaply)
 @numba.njit(cache=True, nogil=True)
 def beam_block_apply(
     cells: np.ndarray,

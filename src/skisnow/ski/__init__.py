@@ -81,7 +81,7 @@ from skisnow.ski._registry import (
     get_ski,
     shipped_ski_path,
 )
-from skisnow.ski._shipped import SHIPPED_SOURCES
+from skisnow.ski._shipped import SHIPPED_SOURCES, rest_on_plane
 from skisnow.ski._skifile import (
     SKI_FILE_FORMAT,
     SKI_FILE_VERSION,
@@ -182,6 +182,7 @@ __all__ = [
     "lower_hull_bracket",
     "predict_identification_uncertainty",
     "read_ski",
+    "rest_on_plane",
     "run_bench",
     "sample_skis",
     "save_network",

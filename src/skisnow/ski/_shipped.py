@@ -42,8 +42,13 @@ def _bump(x: NDArray[np.float64], start: float, end: float, power: float) -> NDA
     return np.where(np.abs(u) < 1.0, np.abs(1.0 - u**2) ** power, 0.0)
 
 
-def _rest_on_plane(x: NDArray[np.float64], z: NDArray[np.float64]) -> NDArray[np.float64]:
-    """Subtract the lower-hull line under the balance point: the unloaded ski on the plane."""
+def rest_on_plane(x: NDArray[np.float64], z: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Subtract the lower-hull line under the balance point: the unloaded ski on the plane.
+
+    ``z`` [m] over stations ``x`` [m] (ascending, the balance point at 0) less the line through
+    the two points of its lower convex hull that bracket x = 0: the camber of a ski resting on
+    a flat surface, as the bench of Kalliorinne et al. (2023) measures it unloaded.
+    """
     hull: list[int] = []
     for i in range(x.size):
         while len(hull) >= 2:
@@ -92,7 +97,7 @@ def _assemble(
         stiffness_x=ex,
         stiffness_values=ei,
         camber_x=x,
-        camber_values=_rest_on_plane(x, z),
+        camber_values=rest_on_plane(x, z),
         kick_zone=kick_zone,
         description=description,
         provenance=Provenance(

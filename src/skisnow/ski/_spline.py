@@ -18,7 +18,7 @@ import numpy as np
 from numpy.typing import ArrayLike
 from scipy.interpolate import PchipInterpolator
 
-from skisnow.ski._shipped import _rest_on_plane
+from skisnow.ski._shipped import rest_on_plane
 from skisnow.ski._skis import Provenance, Ski
 
 __all__ = ["SPLINE_ENDS", "SPLINE_KNOTS", "spline_ski"]
@@ -89,7 +89,7 @@ def spline_ski(
         stiffness_x=np.array(ek),
         stiffness_values=np.asarray(stiffness, dtype=float),
         camber_x=x,
-        camber_values=_rest_on_plane(x, z),
+        camber_values=rest_on_plane(x, z),
         kick_zone=kick_zone,
         description=description,
         provenance=provenance if provenance is not None else Provenance(),
