@@ -151,8 +151,8 @@ def _band_select(
                 break
     if n > 0 and cnt >= n and fmin == fmin_hi:
         # (the chunk-reading loop of the first-contact search above, repeated on purpose inside
-        # this compiled kernel) the n-th largest F lies above the band: the least F above it, chunks counted whole
-        # included (read those that can hold it)
+        # this compiled kernel) the n-th largest F lies above the band: the least F above it,
+        # chunks counted whole included (read those that can hold it)
         for k in range(nb):
             c = bulk[k]
             gi = ch_i[c]
