@@ -125,8 +125,12 @@ def bench_ski(repeat: int) -> None:
     )
 
 
+#: The Hertz benchmark: plane-strain modulus E' [Pa], load [N], sphere radius [m].
+HERTZ_MODULUS, HERTZ_LOAD, HERTZ_RADIUS = 2.0e9, 10.0, 0.05
+
+
 def hertz_problem(n: int):
-    e_prime, w, r = 2.0e9, 10.0, 0.05
+    e_prime, w, r = HERTZ_MODULUS, HERTZ_LOAD, HERTZ_RADIUS
     ref = reference.hertz_sphere(w, r, modulus=e_prime)
     length = 4 * ref.contact_radius
     dx = length / n

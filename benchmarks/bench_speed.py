@@ -43,6 +43,9 @@ import tracemalloc
 
 import numpy as np
 
+# the Hertz problem and its tamaas run are bench_contact's (same folder: on sys.path when run)
+from bench_contact import HERTZ_RADIUS, hertz_problem, tamaas_hertz
+
 ROWS = ("strip", "scaling", "hertz", "flexible", "sweep", "explore", "cycle", "bearing")
 RESULTS: list[tuple[str, str, str, str]] = []  # (row, measured, target, load)
 
@@ -138,16 +141,15 @@ def row_scaling(repeat: int) -> None:
 
 
 def _hertz(n: int):
+    """``bench_contact``'s Hertz problem with the exact pressure on its cells."""
     from skisnow.contact import reference
 
-    e_prime, w, r = 2.0e9, 10.0, 0.05
-    ref = reference.hertz_sphere(w, r, modulus=e_prime)
-    length = 4 * ref.contact_radius
-    x = (np.arange(n) + 0.5) * (length / n) - length / 2
+    x, h, w, e_prime, length = hertz_problem(n)
+    ref = reference.hertz_sphere(w, HERTZ_RADIUS, modulus=e_prime)
     xx, yy = np.meshgrid(x, x, indexing="ij")
     rr = np.hypot(xx, yy)
     exact = ref.max_pressure * np.sqrt(np.clip(1 - (rr / ref.contact_radius) ** 2, 0, None))
-    return x, (xx**2 + yy**2) / (2 * r), w, e_prime, length, exact
+    return x, h, w, e_prime, length, exact
 
 
 def _skisnow_hertz(n: int, tol: float):
@@ -164,23 +166,9 @@ def _skisnow_hertz(n: int, tol: float):
 
 
 def _tamaas_hertz(n: int, tol: float):
-    import tamaas as tm
-
-    _, h, w, e, length, exact = _hertz(n)
-    model = tm.ModelFactory.createModel(tm.model_type.basic_2d, [length, length], [n, n])
-    model.E, model.nu = e / 2, 0.0  # E* = E/(1 − ν²) = E'/2
-    tm.ModelFactory.registerNonPeriodic(model, "non_periodic")
-    surface = np.ascontiguousarray(-(h - h.min()))
-    solver = tm.PolonskyKeerRey(
-        model, surface, tol, tm.PolonskyKeerRey.pressure, tm.PolonskyKeerRey.pressure
-    )
-    solver.setIntegralOperator("non_periodic")
-    solver.max_iter = 10000
-    solver.dump_freq = 10**9
-    t0, c0 = time.perf_counter(), time.process_time()
-    solver.solve(w / length**2)
-    t, c = time.perf_counter() - t0, time.process_time() - c0
-    p = np.array(model.traction).reshape(n, n)
+    """tamaas on the same problem (``bench_contact.tamaas_hertz``), with its error."""
+    t, c, p = tamaas_hertz(n, tol)
+    exact = _hertz(n)[-1]
     return t, c, np.linalg.norm(p - exact) / np.linalg.norm(exact), p
 
 

@@ -19,6 +19,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
+from _browser import wait_ready
 from skisnow.constants import STANDARD_GRAVITY
 from skisnow.explore import (
     ExplorerGrid,
@@ -143,12 +144,7 @@ def test_page_in_a_real_browser(dataset, tmp_path: Path, make_browser) -> None:
     driver = make_browser()
     try:
         driver.get(page.as_uri())
-        for _ in range(100):
-            if driver.execute_script("return document.body.dataset.ready") == "1":
-                break
-            time.sleep(0.1)
-        else:
-            pytest.fail("the page did not finish decoding its data")
+        wait_ready(driver)
 
         def shown():
             rows = driver.find_elements("css selector", "#zones tr[data-zone]")
@@ -232,14 +228,6 @@ def _renamed_classic() -> str:
     return str(path)
 
 
-def _wait_ready(driver) -> None:
-    for _ in range(100):
-        if driver.execute_script("return document.body.dataset.ready") == "1":
-            return
-        time.sleep(0.1)
-    pytest.fail("the page did not finish decoding its data")
-
-
 def test_page_names_no_local_folder_and_embeds_the_figures_palette(uneven) -> None:
     import json
 
@@ -266,7 +254,7 @@ def test_page_on_an_uneven_grid_in_a_real_browser(uneven, tmp_path: Path, make_b
     driver = make_browser()
     try:
         driver.get(page.as_uri())
-        _wait_ready(driver)
+        wait_ready(driver)
         driver.find_element("id", "mod").send_keys(Keys.END)  # 400 MPa
         driver.find_element("id", "mod").send_keys(Keys.LEFT)  # 100 MPa
         driver.find_element("id", "mass").send_keys(Keys.END)  # 100 kg
@@ -309,7 +297,7 @@ def test_page_on_an_uneven_grid_in_a_real_browser(uneven, tmp_path: Path, make_b
         assert "#" in url and "pos=-70" in url
         driver.get("about:blank")
         driver.get(url)
-        _wait_ready(driver)
+        wait_ready(driver)
         assert driver.find_element("id", "mass-value").text == "100 kg"
         assert driver.find_element("id", "mod-value").text == "100 MPa"
         assert driver.find_element("id", "pos-value").text == "-70 mm"

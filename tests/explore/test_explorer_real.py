@@ -3,12 +3,12 @@ selector switches it, and a page without bases is unchanged."""
 
 from __future__ import annotations
 
-import time
 from pathlib import Path
 
 import numpy as np
 import pytest
 
+from _browser import wait_ready
 from skisnow.explore import ExplorerGrid, explorer_dataset, render_explorer, unpack
 from skisnow.micro import grind_preset, write_topography
 from skisnow.snow import snow_preset
@@ -69,10 +69,7 @@ def test_base_selector_in_a_real_browser(real_dataset, tmp_path: Path, make_brow
     driver = make_browser()
     try:
         driver.get(page.as_uri())
-        for _ in range(100):
-            if driver.execute_script("return document.body.dataset.ready") == "1":
-                break
-            time.sleep(0.1)
+        wait_ready(driver)
         note = driver.find_element("id", "real-note")
         assert driver.find_element("id", "real-panel").is_displayed()
         first = note.text

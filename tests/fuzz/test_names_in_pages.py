@@ -13,11 +13,11 @@ explorer runs with a clean console and shows the name as it is.
 from __future__ import annotations
 
 import json
-import time
 from pathlib import Path
 
 import pytest
 
+from _browser import wait_ready
 from skisnow._names import printable
 from skisnow.cli import main
 
@@ -88,12 +88,7 @@ def test_the_explorer_runs_and_shows_the_name(pages, make_browser) -> None:
     driver = make_browser()
     try:
         driver.get(pages["explorer"].as_uri())
-        for _ in range(100):
-            if driver.execute_script("return document.body.dataset.ready") == "1":
-                break
-            time.sleep(0.1)
-        else:
-            pytest.fail("the page did not finish decoding its data")
+        wait_ready(driver)
         assert driver.execute_script("return document.getElementById('ski').options[0].text")\
             == FILE  # fmt: skip
         assert driver.execute_script(
