@@ -24,6 +24,17 @@ from pathlib import Path
 
 import numpy as np
 
+#: The flexible ski's benchmark cases: (ski, mass [kg], load position [mm], snow [MPa] or None
+#: for the stone); bench_speed.py's flexible row uses the same.
+FLEX_CASES = (
+    ("classic", 60, -70, 20),
+    ("classic", 60, -70, 100),
+    ("classic", 60, -70, 400),
+    ("classic", 30, -120, None),
+    ("skate", 60, -120, 20),
+    ("skate", 30, -120, 100),
+)
+
 
 def _uptime() -> str:
     try:
@@ -60,14 +71,7 @@ def main() -> None:
     print("load before:", _uptime())
     n = args.n_points
     rows = []
-    for name, m, xm_mm, e_mpa in (
-        ("classic", 60, -70, 20),
-        ("classic", 60, -70, 100),
-        ("classic", 60, -70, 400),
-        ("classic", 30, -120, None),
-        ("skate", 60, -120, 20),
-        ("skate", 30, -120, 100),
-    ):
+    for name, m, xm_mm, e_mpa in FLEX_CASES:
         ski = get_ski(name)
         x = stations(ski, n)
         xm = xm_mm * 1e-3

@@ -45,6 +45,7 @@ import numpy as np
 
 # the Hertz problem and its tamaas run are bench_contact's (same folder: on sys.path when run)
 from bench_contact import HERTZ_RADIUS, hertz_problem, tamaas_hertz
+from bench_flexible import FLEX_CASES
 
 ROWS = ("strip", "scaling", "hertz", "flexible", "sweep", "explore", "cycle", "bearing")
 RESULTS: list[tuple[str, str, str, str]] = []  # (row, measured, target, load)
@@ -221,16 +222,6 @@ def row_hertz(sizes: list[int], peers: bool = True) -> None:
                 ">= 25x tamaas",
                 before,
             )
-
-
-FLEX_CASES = (
-    ("classic", 60, -70, 20),
-    ("classic", 60, -70, 100),
-    ("classic", 60, -70, 400),
-    ("classic", 30, -120, None),
-    ("skate", 60, -120, 20),
-    ("skate", 30, -120, 100),
-)
 
 
 def row_flexible(repeat: int) -> None:
