@@ -158,6 +158,24 @@ def _root(
         _ALLOW.set(True)
 
 
+def interrupted_by_user(exc: BaseException) -> bool:
+    """Whether ``exc`` is, or was caused by, a Ctrl-C.
+
+    A ``KeyboardInterrupt`` raised while a compiled numba kernel runs comes back as
+    ``SystemError: CPUDispatcher(...) returned a result with an exception set``, chained from the
+    ``KeyboardInterrupt`` (CPython's check of a C function's result): it is an interruption, not
+    an internal error.
+    """
+    seen: set[int] = set()
+    e: BaseException | None = exc
+    while e is not None and id(e) not in seen:
+        if isinstance(e, KeyboardInterrupt):
+            return True
+        seen.add(id(e))
+        e = e.__cause__ or e.__context__
+    return False
+
+
 def _exit_code_of(exc: BaseException) -> int:
     from skisnow._errors import ConvergenceError, InputError, SkisnowError
 
@@ -259,6 +277,9 @@ def _run(args: list[str]) -> int:
         typer.echo("skisnow: interrupted", err=True)
         return EXIT_INTERRUPTED
     except Exception as exc:  # the one place where every error is turned into a message
+        if interrupted_by_user(exc):
+            typer.echo("skisnow: interrupted", err=True)
+            return EXIT_INTERRUPTED
         if _state["debug"]:
             raise
         # Click's exceptions, whether from click itself or the copy Typer vendors: by name

@@ -9,7 +9,7 @@ import typer
 
 from skisnow._errors import InputError
 from skisnow._names import file_stem
-from skisnow.cli._app import app, report_unconverged
+from skisnow.cli._app import app, interrupted_by_user, report_unconverged
 from skisnow.cli._media import (
     BaseOption,
     FilmCutoffOption,
@@ -186,8 +186,10 @@ def sweep(
     bar = progress_bar(f"sweep {out.name}", transient=False)
     try:
         run = run_sweep(spec, out, scheduler=scheduler, workers=workers, on_progress=bar)
-    except KeyboardInterrupt:
+    except (KeyboardInterrupt, SystemError) as exc:
         # Say what was kept, and exit 130 (interrupted), as `skisnow --help` promises.
+        if not interrupted_by_user(exc):  # a SystemError not caused by Ctrl-C is a bug
+            raise
         bar.close()
         done = bar.completed
         typer.echo(
