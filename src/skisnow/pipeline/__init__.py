@@ -4,7 +4,9 @@
 camber profile h = f(x, m, x_m) (eq. 1), the rigid ski pressed into elastic snow with force and
 moment balance (eq. 2–3), the contact zones and the Breitschädel (2012) 50 µm estimate. The
 sweep, ``skisnow contact``, the report, the demo and the examples call it, so the same inputs
-give the same numbers whichever door a user comes in by.
+give the same numbers whichever door a user comes in by. For a ski that carries its posterior
+(an identified ski), :func:`case_intervals` gives the case's answers 95 % intervals by solving
+the case on posterior samples (:class:`Intervals`; :func:`sample_intervals` for any answer).
 
 Grid convention: ``n_points`` (default 4096) stations evenly spaced from the tail to the tip of
 the running surface, both ends included (:func:`stations`), each the centre of one contact cell.
@@ -23,6 +25,16 @@ from there on first use.
 
 from skisnow._lazy import lazy_getattr
 from skisnow.pipeline._case import DEFAULT_TOL, MODELS, SKI_MODELS, Case, solve_case
+from skisnow.pipeline._intervals import (
+    DEFAULT_LEVEL,
+    DEFAULT_SAMPLES,
+    INTERVAL_ZONES,
+    ZONE_QUANTITIES,
+    Intervals,
+    case_intervals,
+    case_quantities,
+    sample_intervals,
+)
 from skisnow.pipeline._profiles import (
     DEFAULT_N_POINTS,
     DEFAULT_PROFILE_SOURCE,
@@ -48,23 +60,31 @@ _LAZY = dict.fromkeys(
 __getattr__ = lazy_getattr(__name__, _LAZY)
 
 __all__ = [
+    "DEFAULT_LEVEL",
     "DEFAULT_N_POINTS",
     "DEFAULT_PROFILE_SOURCE",
+    "DEFAULT_SAMPLES",
     "DEFAULT_TOL",
+    "INTERVAL_ZONES",
     "MAP_MASSES",
     "MAP_MODULI",
     "MODELS",
     "PROFILE_SOURCES",
     "SKI_MODELS",
     "STANDARD_SNOWS",
+    "ZONE_QUANTITIES",
     "Case",
+    "Intervals",
     "SkiStudy",
+    "case_intervals",
+    "case_quantities",
     "loaded_profiles",
     "note_implausible",
     "note_unconverged",
     "recording_implausible",
     "recording_unconverged",
     "resolve_ski",
+    "sample_intervals",
     "shipped_twin",
     "solve_case",
     "standard_cases",

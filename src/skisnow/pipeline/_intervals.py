@@ -1,0 +1,254 @@
+"""Intervals on a case's answers from the posterior of an identified ski (issue 25, item 4).
+
+An identified ski carries the square root of its Laplace posterior (log EI and z0 at its
+stations, :func:`skisnow.identify.identify_ski`); :func:`skisnow.ski.sample_skis` draws skis
+from it with the correlations along the ski kept. Any answer of the one-case chain (Kalliorinne
+et al. 2023: loaded profile, eq. 1, elastic half-space with force and moment balance, eq. 2–3,
+zones) computed on each sample spreads as the ski's uncertainty makes it spread: the interval at
+``level`` is the pair of sample quantiles (1 − level)/2 and (1 + level)/2 (Monte Carlo
+propagation; Gelman et al. 2013, *Bayesian Data Analysis*, §1.9 and §10.5), extended to the
+point estimate (the answer of the identified ski itself) when a skewed, non-linear answer puts
+the estimate outside them — so an interval always contains its estimate, and a ski with
+zero-width bands gives zero-width intervals.
+
+How many samples: the Monte Carlo standard error of each end is estimated by bootstrapping the
+samples (Efron & Tibshirani 1993, §6) and carried with the intervals
+(:attr:`Intervals.mc_error`, as a fraction of the interval's width); at 200 samples it is about
+5–8 % of the width for a smooth answer (``benchmarks/bench_interval_samples.py`` measures it
+against the sample count), small beside the width itself. A sample whose case cannot be solved
+(the load unsupported, :class:`~skisnow.UnsupportedLoadError`) is counted in
+:attr:`Intervals.failed`, not silently dropped.
+
+The quantities of a case (:func:`case_quantities`): per zone (rear, middle, front, total,
+kick) its length [m], area [m²], mean and peak pressure [Pa] and load share, SI, keys
+``"<zone>.<quantity>"``. A pressure is undefined (NaN) where a zone has no contact; its interval
+is taken over the samples where the zone has contact.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from skisnow._errors import InputError, UnsupportedLoadError
+
+if TYPE_CHECKING:
+    from skisnow.pipeline._case import Case
+    from skisnow.ski import Ski
+
+__all__ = [
+    "DEFAULT_LEVEL",
+    "DEFAULT_SAMPLES",
+    "INTERVAL_ZONES",
+    "ZONE_QUANTITIES",
+    "Intervals",
+    "case_intervals",
+    "case_quantities",
+    "sample_intervals",
+]
+
+#: Posterior samples per answer by default (Monte Carlo error of the ends ~5–8 % of the width).
+DEFAULT_SAMPLES: int = 200
+#: The intervals' probability.
+DEFAULT_LEVEL: float = 0.95
+#: Zones whose answers carry intervals (``kick``: between the kick-zone marks).
+INTERVAL_ZONES: tuple[str, ...] = ("rear", "middle", "front", "total", "kick")
+#: Per zone: the attribute of :class:`skisnow.contact.Zone` (SI units).
+ZONE_QUANTITIES: tuple[str, ...] = ("length", "area", "mean_pressure", "max_pressure", "load_share")
+_BOOTSTRAP = 200
+
+
+@dataclass(frozen=True, kw_only=True)
+class Intervals:
+    """Intervals of named answers from posterior samples (SI units, as the answers).
+
+    Attributes
+    ----------
+    estimate
+        The answer of the identified ski itself, per name.
+    low, high
+        The ends of each interval (``low <= estimate <= high``).
+    samples, seed, level
+        Posterior samples drawn, their seed, the intervals' probability.
+    failed
+        Samples whose answer could not be computed (e.g. the load not supported).
+    unconverged
+        Samples whose contact solve did not reach its tolerance (their answers are kept).
+    mc_error
+        Per name: the bootstrap Monte Carlo standard error of the interval's ends (the larger
+        of the two), as a fraction of the interval's width (0 for a zero-width interval,
+        round-off included).
+    """
+
+    estimate: Mapping[str, float]
+    low: Mapping[str, float]
+    high: Mapping[str, float]
+    samples: int
+    seed: int
+    level: float
+    failed: int = 0
+    unconverged: int = 0
+    mc_error: Mapping[str, float] = field(default_factory=dict)
+
+    def interval(self, name: str) -> tuple[float, float]:
+        """``(low, high)`` of ``name``."""
+        return self.low[name], self.high[name]
+
+    def worst_mc_error(self) -> float:
+        """The largest Monte Carlo error of an end over all answers (fraction of the width)."""
+        vals = [v for v in self.mc_error.values() if np.isfinite(v)]
+        return float(max(vals)) if vals else 0.0
+
+
+def case_quantities(case: Case) -> dict[str, float]:
+    """The answers of a case that carry intervals: ``"<zone>.<quantity>"`` → value (SI)."""
+    z = case.zones
+    return {
+        f"{zone}.{q}": float(getattr(z[zone], q))
+        for zone in INTERVAL_ZONES
+        for q in ZONE_QUANTITIES
+    }
+
+
+def _quantiles(values: np.ndarray, level: float) -> tuple[np.ndarray, np.ndarray]:
+    """Lower and upper sample quantiles over axis -1 (NaN ignored; all NaN → NaN)."""
+    a = (1.0 - level) / 2.0
+    with np.errstate(all="ignore"), _quiet():
+        lo = np.nanquantile(values, a, axis=-1)
+        hi = np.nanquantile(values, 1.0 - a, axis=-1)
+    return lo, hi
+
+
+class _quiet:
+    """Silence NumPy's "All-NaN slice" warning (an answer undefined in every sample)."""
+
+    def __enter__(self) -> None:
+        import warnings
+
+        self._cm = warnings.catch_warnings()
+        self._cm.__enter__()
+        warnings.simplefilter("ignore", RuntimeWarning)
+
+    def __exit__(self, *exc: object) -> None:
+        self._cm.__exit__(*exc)
+
+
+def sample_intervals(
+    ski: Ski,
+    answers: Callable[[Ski], Mapping[str, float]],
+    *,
+    estimate: Mapping[str, float],
+    samples: int = DEFAULT_SAMPLES,
+    seed: int = 0,
+    level: float = DEFAULT_LEVEL,
+) -> Intervals:
+    """Intervals of ``answers(ski)`` over ``samples`` skis drawn from the posterior of ``ski``.
+
+    Monte Carlo propagation of the ski's Laplace posterior (module docstring): ``answers`` is
+    called on each sample (:func:`skisnow.ski.sample_skis`, seeded) and must return the same
+    names as ``estimate`` (the answers of ``ski`` itself). A sample raising
+    :class:`~skisnow.UnsupportedLoadError` is counted as failed.
+
+    Raises
+    ------
+    InputError
+        ``ski`` carries no posterior, ``samples`` < 2, or ``level`` not in (0, 1).
+    """
+    from skisnow.ski import sample_skis
+
+    if not (isinstance(samples, int) and samples >= 2):
+        raise InputError(f"samples: need an integer >= 2 posterior samples, got {samples!r}")
+    if not 0.0 < level < 1.0:
+        raise InputError(f"level: need a probability in (0, 1), got {level!r}")
+    names = list(estimate)
+    rows, failed = [], 0
+    for s in sample_skis(ski, samples, seed=seed):
+        try:
+            got = answers(s)
+        except UnsupportedLoadError:
+            failed += 1
+            continue
+        rows.append([float(got[n]) for n in names])
+    if not rows:
+        raise UnsupportedLoadError(
+            f"no posterior sample of {ski.name!r} could carry the load ({samples} tried)"
+        )
+    values = np.asarray(rows, dtype=float).T  # (names, samples)
+    lo, hi = _quantiles(values, level)
+    point = np.array([float(estimate[n]) for n in names])
+    lo = np.fmin(lo, point)  # the interval always holds its estimate (NaN-safe)
+    hi = np.fmax(hi, point)
+    # Monte Carlo error of the ends: bootstrap the samples (seeded, independent of the draws)
+    rng = np.random.default_rng([seed, 1])
+    idx = rng.integers(0, values.shape[1], size=(_BOOTSTRAP, values.shape[1]))
+    blo, bhi = _quantiles(values[:, idx], level)  # (names, bootstrap)
+    with np.errstate(all="ignore"), _quiet():
+        se = np.fmax(np.nanstd(blo, axis=1), np.nanstd(bhi, axis=1))
+        width = hi - lo
+        wide = width > 1e-9 * np.abs(point)  # round-off widths count as zero
+        frac = np.where(wide, se / np.where(wide, width, 1.0), 0.0)
+    return Intervals(
+        estimate=dict(zip(names, point.tolist(), strict=True)),
+        low=dict(zip(names, lo.tolist(), strict=True)),
+        high=dict(zip(names, hi.tolist(), strict=True)),
+        samples=samples,
+        seed=seed,
+        level=level,
+        failed=failed,
+        mc_error=dict(zip(names, np.nan_to_num(frac, nan=0.0).tolist(), strict=True)),
+    )
+
+
+def case_intervals(
+    case: Case,
+    *,
+    samples: int = DEFAULT_SAMPLES,
+    seed: int = 0,
+    level: float = DEFAULT_LEVEL,
+    **case_kwargs: Any,
+) -> Intervals | None:
+    """Intervals of a solved case's answers (:func:`case_quantities`) from its ski's posterior.
+
+    Each posterior sample is solved through :func:`skisnow.pipeline.solve_case` with the same
+    mass, load position, snow and ``case_kwargs`` (model, stations, base, ...; the beam route,
+    since a sample is a new ski no network was trained on), warm-started from the case's
+    pressure. Returns ``None`` when the case's ski carries no posterior (a shipped definition,
+    a ski file without bands): there is no uncertainty recorded to propagate.
+    """
+    from skisnow.pipeline._case import solve_case
+
+    ski = case.ski
+    if ski is None or not ski.has_posterior:
+        return None
+    kw: dict[str, Any] = {
+        "mass": case.mass,
+        "load_position": case.load_position,
+        "model": case.model,
+        "n_points": case.n_points,
+        "ski_model": case.ski_model,
+        **case_kwargs,
+    }
+    if case.snow is not None:
+        kw.setdefault("snow", case.snow)
+    else:
+        kw.setdefault("snow_modulus", case.snow_modulus)
+    if case.ski_model == "rigid":
+        kw["profile_source"] = "beam"
+    warm = case.model == "strip" and case.ski_model == "rigid"
+    start = np.asarray(case.solution.pressure) if warm else None
+    unconverged = 0
+
+    def answers(s: Ski) -> dict[str, float]:
+        nonlocal unconverged
+        c = solve_case(s, start=start, **kw)
+        unconverged += not c.converged
+        return case_quantities(c)
+
+    out = sample_intervals(
+        ski, answers, estimate=case_quantities(case), samples=samples, seed=seed, level=level
+    )
+    return dataclasses.replace(out, unconverged=unconverged)
