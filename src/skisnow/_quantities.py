@@ -309,6 +309,10 @@ QUANTITIES: dict[str, Quantity] = {
         name="number of optimiser steps", unit="(count)", low=0.0, plausible=(0.0, 1.0e6),
         integer=True, typical=200.0,
     ),
+    "posterior_samples": Quantity(
+        name="number of posterior samples (0: no intervals)", unit="(count)", low=0.0,
+        plausible=(0.0, 1.0e4), integer=True, typical=200.0,
+    ),
     "ensemble_members": Quantity(
         name="number of ensemble members", unit="(count)", low=1.0, plausible=(1.0, 100.0),
         integer=True, typical=1.0,

@@ -13,24 +13,11 @@ import dataclasses
 import numpy as np
 import pytest
 
+from _posterior import with_posterior
 from skisnow.pipeline import case_intervals, case_quantities, sample_intervals, solve_case
 from skisnow.ski import get_ski, sample_skis
 
 _CASE = dict(mass=70.0, load_position=-0.12, snow_modulus=100e6)
-
-
-def with_posterior(ski, *, ei_sd: float = 0.03, z0_sd: float = 2e-6, k: int = 4, scale=1.0):
-    """``ski`` carrying k smooth posterior modes (log EI sd ~``ei_sd``, z0 sd ~``z0_sd`` [m])."""
-    ex, cx = np.asarray(ski.stiffness_x), np.asarray(ski.camber_x)
-    u = (ex - ex[0]) / np.ptp(ex)
-    v = (cx - cx[0]) / np.ptp(cx)
-    me = np.array([ei_sd / np.sqrt(k) * np.sin((i + 1) * np.pi * u) for i in range(k)]) * scale
-    mz = np.array([z0_sd / np.sqrt(k) * np.cos((i + 1) * np.pi * v) for i in range(k)]) * scale
-    return dataclasses.replace(
-        ski, stiffness_log_sd=tuple(np.sqrt(np.sum(me**2, axis=0))),
-        camber_sd=tuple(np.sqrt(np.sum(mz**2, axis=0))),
-        stiffness_modes=tuple(map(tuple, me)), camber_modes=tuple(map(tuple, mz)),
-    )  # fmt: skip
 
 
 def _widths(iv, names):

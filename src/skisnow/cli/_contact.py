@@ -9,6 +9,7 @@ import typer
 
 from skisnow._errors import InputError
 from skisnow.cli._app import app, report_converged, report_domain_warnings
+from skisnow.cli._intervals import SamplesOption
 from skisnow.cli._media import (
     BaseOption,
     FilmCutoffOption,
@@ -144,6 +145,7 @@ def contact(
     n_across: Annotated[
         int, typer.Option("--n-across", help="Cells across the width (surface model).")
     ] = 16,
+    samples: SamplesOption = 200,
     json_out: JsonOption = False,
     figure: Annotated[
         Path | None, typer.Option("--figure", help="Save a figure (png/svg/pdf by suffix).")
@@ -159,8 +161,15 @@ def contact(
     """Apparent contact of a loaded ski with elastic snow: force and moment balance (eq. 2–3).
 
     With --base (a texture) and --snow, also the real contact along the ski, side by side with
-    the apparent one, and the friction proxies with their assumptions.
+    the apparent one, and the friction proxies with their assumptions. An identified ski (a
+    ski file with bands) gives every zone's answers a 95 % interval (--samples).
     """
+    from skisnow.cli._intervals import (
+        check_samples,
+        no_uncertainty_note,
+        print_intervals,
+        uncertainty_doc,
+    )
     from skisnow.cli._media import friction_parameters, resolve_base, resolve_snow
     from skisnow.contact import read_profile, write_fields
     from skisnow.pipeline import solve_case
@@ -204,6 +213,7 @@ def contact(
         if value is not None:
             check_value(value, quantity, where=name)
     check_grid_points(points, where="--points")
+    check_samples(samples)
     check_grid_points(points * n_across if model == "surface" else points, where="--n-across")
     if model not in MODELS:
         raise InputError(f"--model must be one of {', '.join(MODELS)}, got {model!r}")
@@ -254,6 +264,11 @@ def contact(
         ski_model=ski_model,
     )
     sol, zones = case.solution, case.zones
+    iv = None
+    if samples and case.ski is not None and case.ski.has_posterior:
+        from skisnow.pipeline import case_intervals
+
+        iv = case_intervals(case, samples=samples, base=base_modulus_mpa * 1e6, n_across=n_across)
     for note in case.warnings:
         say(f"warning: {note}", style="yellow")
     # exit code 3 when unconverged, 4 outside a model's domain (the last note of an unconverged
@@ -316,6 +331,7 @@ def contact(
         "force_residual": sol.force_residual,
         "moment_residual": sol.moment_residual,
         "warnings": list(case.warnings),
+        "uncertainty": uncertainty_doc(iv, note=no_uncertainty_note(case.ski, samples)),
     }
     if case.flexible is not None:
         doc["ski_penetration_um"] = case.flexible.penetration * 1e6
@@ -378,6 +394,10 @@ def contact(
           p["max_pressure_kpa"], " + ".join(r.replace("_", " ") for r in p["regions"])]
          for k, p in enumerate(doc["patches"], start=1)],
     )  # fmt: skip
+    if iv is not None:
+        print_intervals(iv, f"Uncertainty of {ski}")
+    else:
+        console.print(doc["uncertainty"]["note"])
     status = "converged" if sol.converged else "NOT converged"
     console.print(
         f"δ = {doc['translation_um']:.2f} µm, θ = {sol.rotation:.3e} rad, {status} in "

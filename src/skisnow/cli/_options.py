@@ -52,6 +52,7 @@ OPTION_QUANTITIES: dict[str, str] = {
     "--noise-mm": "noise",
     "--noise-um": "noise_um",
     "--seed": "seed",
+    "--samples": "posterior_samples",
     "--x-tail-mm": "x",
     "--x-tip-mm": "x",
     "--stations-mm": "x",

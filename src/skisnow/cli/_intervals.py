@@ -1,0 +1,123 @@
+"""The intervals of an identified ski's answers at the CLI: the ``--samples`` option, the JSON
+section ``uncertainty`` and the table (thin: :func:`skisnow.pipeline.case_intervals` computes).
+"""
+
+from __future__ import annotations
+
+from typing import Annotated, Any
+
+import typer
+
+from skisnow._errors import InputError
+from skisnow.pipeline import DEFAULT_SAMPLES, INTERVAL_ZONES
+
+__all__ = [
+    "UNIT_KEYS",
+    "SamplesOption",
+    "check_samples",
+    "interval_text",
+    "no_uncertainty_note",
+    "print_intervals",
+    "uncertainty_doc",
+]
+
+SamplesOption = Annotated[
+    int,
+    typer.Option(
+        "--samples",
+        help="Posterior samples of an identified ski for the 95 % intervals of the answers "
+        f"(default {DEFAULT_SAMPLES}: Monte Carlo error of the ends ~5-8 % of the width; 0: "
+        "no intervals). A ski without bands has none.",
+    ),
+]
+
+#: quantity of :data:`skisnow.pipeline.ZONE_QUANTITIES` -> (key in field units, factor from SI)
+UNIT_KEYS: dict[str, tuple[str, float]] = {
+    "length": ("length_mm", 1e3),
+    "area": ("area_cm2", 1e4),
+    "mean_pressure": ("mean_pressure_kpa", 1e-3),
+    "max_pressure": ("max_pressure_kpa", 1e-3),
+    "load_share": ("load_share", 1.0),
+}
+
+WHY_ENOUGH = (
+    "the ends of each interval are sample quantiles; their Monte Carlo standard error "
+    "(bootstrap) is given as a fraction of the interval's width: at the default 200 samples "
+    "about 5-8 % for a smooth answer (benchmarks/bench_interval_samples.py), small beside the "
+    "width itself; raise --samples to shrink it as 1/sqrt(samples)"
+)
+
+
+def check_samples(samples: int) -> None:
+    """``--samples`` is 0 (no intervals) or at least 2 (an interval needs two samples)."""
+    if samples == 1:
+        raise InputError("--samples: give 0 (no intervals) or at least 2 posterior samples, got 1")
+
+
+def no_uncertainty_note(ski: Any, samples: int) -> str:
+    """Why an answer carries no interval (said, never implied by a bare number)."""
+    if ski is None:
+        return "no uncertainty recorded: a given profile carries no bands"
+    if ski.has_posterior and samples == 0:
+        return "intervals not computed (--samples 0); the ski carries its posterior"
+    method = ski.provenance.method or "a definition"
+    return (
+        f"no uncertainty recorded: ski {ski.name!r} carries no bands ({method}); its answers "
+        "are those of the ski as given, not exact"
+    )
+
+
+def uncertainty_doc(iv: Any, *, note: str | None = None, zones=INTERVAL_ZONES) -> dict[str, Any]:
+    """The ``uncertainty`` section of a JSON document, field units (``note`` when ``iv`` is
+    ``None``: why there is none)."""
+    if iv is None:
+        return {"recorded": False, "note": note or "no uncertainty recorded"}
+    out: dict[str, Any] = {
+        "recorded": True,
+        "method": "posterior samples of the identified ski (Laplace posterior in its file), "
+        "each solved as the case; interval = sample quantiles, extended to hold the estimate",
+        "level": iv.level,
+        "samples": iv.samples,
+        "seed": iv.seed,
+        "failed_samples": iv.failed,
+        "unconverged_samples": iv.unconverged,
+        "mc_error_of_ends_max_fraction_of_width": iv.worst_mc_error(),
+        "why_enough": WHY_ENOUGH,
+        "intervals": {},
+    }
+    for zone in zones:
+        rec = {}
+        for q, (key, f) in UNIT_KEYS.items():
+            name = f"{zone}.{q}"
+            if name in iv.low:
+                rec[key] = [iv.low[name] * f, iv.high[name] * f]
+        out["intervals"][zone] = rec
+    return out
+
+
+def interval_text(low: float, high: float, fmt: str = ".3g") -> str:
+    """``'low – high'`` (``'—'`` when undefined)."""
+    if low != low or high != high:  # NaN: undefined (no contact in the zone)
+        return "—"
+    return f"{low:{fmt}} – {high:{fmt}}"
+
+
+def print_intervals(iv: Any, title: str, *, zones=INTERVAL_ZONES) -> None:
+    """One table: a row per zone, the 95 % interval of each answer (field units)."""
+    from skisnow.cli._render import console, print_table
+
+    rows = []
+    for zone in zones:
+        row = [zone]
+        for q, (_, f) in UNIT_KEYS.items():
+            row.append(interval_text(iv.low[f"{zone}.{q}"] * f, iv.high[f"{zone}.{q}"] * f))
+        rows.append(row)
+    print_table(
+        f"{title}: {100 * iv.level:g} % intervals from {iv.samples} posterior samples",
+        ["zone", "length [mm]", "area [cm²]", "mean p [kPa]", "max p [kPa]", "load share"],
+        rows,
+    )
+    console.print(
+        f"Monte Carlo error of the interval ends ≤ {100 * iv.worst_mc_error():.0f} % of the "
+        f"width; {iv.failed} sample(s) could not carry the load, {iv.unconverged} unconverged"
+    )
