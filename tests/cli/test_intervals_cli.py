@@ -57,3 +57,33 @@ def test_a_ski_without_bands_says_it_carries_no_uncertainty(capsys) -> None:
 def test_samples_option_is_checked(capsys, value: str, words: str) -> None:
     assert main([*CONTACT, "--ski", "classic", "--samples", value]) == 2
     assert words in capsys.readouterr().err
+
+
+def test_compare_marks_a_ski_and_its_own_sample_a_tie_within_uncertainty(
+    capsys, tmp_path: Path, identified: Path
+) -> None:
+    # a ski and a draw from its own posterior (which carries the same bands): their intervals
+    # overlap, so the ranking may not put one ahead; the skate ski is a different ski (its mean
+    # pressure lies outside the classic's interval) and is ranked apart
+    from skisnow.ski import read_ski, sample_skis
+
+    ski = read_ski(identified)
+    (draw,) = sample_skis(ski, 1, seed=7)
+    draw = dataclasses.replace(with_posterior(draw), name="its own sample")
+    other = write_ski(draw, tmp_path / "sample.json")
+    doc = _json(capsys, ["compare", str(identified), str(other), "skate", "--body-mass-kg", "70",
+                         "--snow-modulus-mpa", "100", "--samples", "30", "--points", "1024",
+                         "--snow-range-mpa", "50,100", "--criterion", "mean-pressure"])  # fmt: skip
+    rank = {r["ski"]: r for r in doc["ranking"]}
+    a, b = rank["identified.json"], rank["sample.json"]
+    assert a["full_total_mean_pressure_kpa"] != b["full_total_mean_pressure_kpa"]
+    assert a["tied"] and b["tied"] and a["within_uncertainty"] and a["rank"] == b["rank"]
+    assert "sample.json" in a["tied_with"] and "skate" not in a["tied_with"]
+    assert rank["skate"]["interval"] is None
+    lo, hi = a["interval"]
+    assert lo <= a["full_total_mean_pressure_kpa"] <= hi
+    recs = {r["ski"]: r for r in doc["intervals"]}
+    assert recs["identified.json"]["samples"] == 30
+    assert "no uncertainty recorded" in recs["skate"]["uncertainty"]
+    assert recs["identified.json"]["full_total_length_mm_low"] <= doc["skis"][0][
+        "full_total_length_mm"] <= recs["identified.json"]["full_total_length_mm_high"]  # fmt: skip

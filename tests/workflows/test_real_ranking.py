@@ -29,3 +29,20 @@ def test_every_proxy_names_a_column_and_a_direction() -> None:
         assert p.better in ("lower", "higher") and p.column and p.description
     with pytest.raises(InputError, match="proxy"):
         rank_real([_rec("a", "S1", 1.0)], "speed")
+
+
+def test_glide_proxies_tie_within_the_glide_test_precision() -> None:
+    # Lemmettylä et al. (2021): a skitester resolves glide to 0.6-1.1 % relative variation;
+    # values 1.5 % apart overlap at ±1.1 % and tie, 3 % apart do not; precision 0 restores
+    # the exact rule
+    from skisnow.workflows import GLIDE_TEST_PRECISION
+
+    assert pytest.approx(0.011) == GLIDE_TEST_PRECISION
+    recs = [_rec("a", "S1", 1.0), _rec("b", "S1", 1.015), _rec("c", "S1", 1.03)]
+    out = {r["ski"]: r for r in rank_real(recs, "viscous")}
+    assert out["a"]["ties_with"] == ["b × S1"] and out["a"]["within_glide_test_precision"]
+    assert sorted(out["b"]["ties_with"]) == ["a × S1", "c × S1"]
+    assert [out[k]["rank"] for k in "abc"] == [1, 1, 2]
+    exact = {r["ski"]: r for r in rank_real(recs, "viscous", precision=0.0)}
+    assert [exact[k]["rank"] for k in "abc"] == [1, 2, 3]
+    assert not any(r["within_glide_test_precision"] for r in exact.values())

@@ -11,12 +11,21 @@ import typer
 from skisnow._errors import InputError
 from skisnow.pipeline import DEFAULT_SAMPLES, INTERVAL_ZONES
 
+GLIDE_NOTE = (
+    "values within 1.1 % of each other tie: the relative variation of glide measured by a "
+    "skitester on snow, 0.6-1.1 % (Lemmettylä et al. 2021), the worse end; a smaller predicted "
+    "difference no glide test could confirm"
+)
+
 __all__ = [
+    "GLIDE_NOTE",
     "UNIT_KEYS",
     "SamplesOption",
     "check_samples",
+    "fleet_intervals",
     "interval_text",
     "no_uncertainty_note",
+    "print_fleet_uncertainty",
     "print_intervals",
     "uncertainty_doc",
 ]
@@ -63,7 +72,7 @@ def no_uncertainty_note(ski: Any, samples: int) -> str:
     method = ski.provenance.method or "a definition"
     return (
         f"no uncertainty recorded: ski {ski.name!r} carries no bands ({method}); its answers "
-        "are those of the ski as given, not exact"
+        "are those of the ski as given, not exact (they count as exact in a ranking)"
     )
 
 
@@ -121,3 +130,42 @@ def print_intervals(iv: Any, title: str, *, zones=INTERVAL_ZONES) -> None:
         f"Monte Carlo error of the interval ends ≤ {100 * iv.worst_mc_error():.0f} % of the "
         f"width; {iv.failed} sample(s) could not carry the load, {iv.unconverged} unconverged"
     )
+
+
+def fleet_intervals(cmp: Any, samples: int) -> list[dict[str, Any]]:
+    """One record per ski of a comparison: the 95 % intervals of its contact columns (field
+    units, ``<column>_low``/``_high``; NaN and a note for a ski without bands)."""
+    from skisnow.cli._fleet_table import ZONE_ROWS
+    from skisnow.workflows import interval_records
+
+    columns = [
+        f"{load}_{zone}_{q}"
+        for load in ("half", "full")
+        for zone in ZONE_ROWS
+        if zone in INTERVAL_ZONES
+        for q in ("length_mm", "area_cm2", "mean_pressure_kpa", "peak_pressure_kpa",
+                  "load_share")
+    ]  # fmt: skip
+    notes = [no_uncertainty_note(e.ski.ski, samples) for e in cmp.entries]
+    return interval_records(cmp.entries, columns, notes=notes)
+
+
+def print_fleet_uncertainty(
+    ranking: list[dict[str, Any]], column: str, records: list[dict[str, Any]]
+) -> None:
+    """Under the ranking: each ski's interval of the criterion (or why none), and the ties."""
+    from skisnow.cli._render import console
+
+    for rec in records:
+        lo, hi = rec.get(f"{column}_low", float("nan")), rec.get(f"{column}_high", float("nan"))
+        if lo == lo:
+            console.print(
+                f"{rec['ski']}: {column} in {interval_text(lo, hi)} (95 %, {rec['samples']} "
+                "posterior samples)"
+            )
+        else:
+            console.print(f"{rec['ski']}: {rec['uncertainty']}")
+    if any(r["within_uncertainty"] for r in ranking):
+        console.print("n= : a tie within uncertainty (the skis' 95 % intervals overlap)")
+    elif any(r["tied"] for r in ranking):
+        console.print("n= : a tie (equal values; skis with the same content always tie)")

@@ -18,6 +18,8 @@ from skisnow._atomic import atomic_path
 from skisnow._errors import InputError
 from skisnow._values import parse_values
 from skisnow.cli._app import EXIT_INPUT, app, report_converged, run_annotations
+from skisnow.cli._fleet_table import comparison_rows
+from skisnow.cli._intervals import GLIDE_NOTE, SamplesOption
 from skisnow.cli._media import (
     FilmCutoffOption,
     ShearStrengthOption,
@@ -103,45 +105,6 @@ def _report_failures(failures: Sequence[tuple[str, str]]) -> None:
 
 # ------------------------------------------------------------------------------- compare
 
-_SIDE_BY_SIDE = (
-    ("camber_half_mm", "camber at ½ BW [mm]"),
-    ("camber_full_mm", "camber at 1 BW [mm]"),
-    ("pocket_0.1mm_half_mm", "wax pocket (0.1 mm) at ½ BW [mm]"),
-    ("closing_load_kg", "closing load [kg]"),
-    ("stiffness_n_per_mm", "stiffness [N/mm]"),
-)
-#: Rows of derived metrics computed at the load position (named in their label).
-_AT_POSITION = ("closing_load_kg",)
-#: Zones and regions of the side-by-side table (``kick`` is the kick-zone region).
-ZONE_ROWS = ("rear", "middle", "front", "total", "rear_glide", "kick", "front_glide")
-_CONTACT_ROWS = (
-    ("length_mm", "length [mm]"),
-    ("area_cm2", "area [cm²]"),
-    ("mean_pressure_kpa", "mean p [kPa]"),
-    ("peak_pressure_kpa", "peak p [kPa]"),
-    ("load_share", "load share"),
-)
-
-
-def comparison_rows(
-    records: Sequence[dict[str, Any]], *, load_position_mm: float | None = None
-) -> list[list[Any]]:
-    """The side-by-side table: one row per quantity, one column per ski (field units); the
-    load position of the derived metrics is named in their rows."""
-    at = "" if load_position_mm is None else f" at {load_position_mm:g} mm"
-    rows: list[list[Any]] = [["profile route", *[r["profile_route"] for r in records]]]
-    rows += [[label.replace(" [", f"{at} [", 1) if key in _AT_POSITION else label,
-              *[r[key] for r in records]] for key, label in _SIDE_BY_SIDE]  # fmt: skip
-    for load, tag in (("half", "½ BW"), ("full", "1 BW")):
-        for zone in ZONE_ROWS:
-            for key, label in _CONTACT_ROWS:
-                name = zone.replace("_", " ") if zone != "kick" else "kick zone"
-                rows.append(
-                    [f"{tag} {name} {label}", *[r[f"{load}_{zone}_{key}"] for r in records]]
-                )
-        rows.append([f"{tag} grip wax touches", *[r[f"{load}_kick_contact"] for r in records]])
-    return rows
-
 
 @app.command()
 def compare(
@@ -190,18 +153,25 @@ def compare(
         ),
     ] = "20,30,50,75,100,150,200,300,400",
     points: int = _POINTS,
+    samples: SamplesOption = 200,
     out: Path | None = _OUT,
     json_out: JsonOption = False,
 ) -> None:
     """Compare a fleet side by side at ½ and 1 body weight; rank it on one snow and across snow.
 
+    An identified ski's contact answers carry 95 % intervals (--samples); skis whose intervals
+    overlap tie in the ranking (a tie within uncertainty); glide proxies tie within the
+    glide-test precision (1.1 %, Lemmettylä et al. 2021).
+
     A ski that cannot be read is named on stderr and left out; the others are compared (exit 2,
     bad input, when any was left out).
     """
+    from skisnow.cli._intervals import check_samples, fleet_intervals, print_fleet_uncertainty
     from skisnow.workflows import CRITERIA, PROXIES, compare_fleet, rank_across_snow
 
     _check_positive("--body-mass-kg", body_mass_kg)
     _check_fleet(skis)
+    check_samples(samples)
     if ski_model not in ("rigid", "flexible"):
         raise InputError(f"--ski-model must be rigid or flexible, got {ski_model!r}")
     snow_obj, e = resolve_snow(snow, snow_modulus_mpa, temperature_c=snow_temperature_c)
@@ -230,6 +200,7 @@ def compare(
             ski_model=ski_model,  # type: ignore[arg-type]
             n_points=points,
             progress=update,
+            samples=samples,
         )
     _report_failures(cmp.failures)
     for entry in cmp.entries:
@@ -261,6 +232,7 @@ def compare(
         for lo, hi, before, after in snow.changes
     ]
     notes = [e.route_note for e in cmp.entries if e.route_note]
+    intervals = fleet_intervals(cmp, samples)
     real_records, real_ranking = [], []
     if base:
         from skisnow.workflows import rank_real, real_table
@@ -282,6 +254,7 @@ def compare(
             files += [str(write_csv(out / "real_contact.csv", real_records))]
             files += [str(write_csv(out / "real_ranking.csv", real_ranking))]
         files += [str(write_csv(out / "ranking.csv", ranking))]
+        files += [str(write_csv(out / "intervals.csv", intervals))]
         files += [str(write_csv(out / "snow_ranking.csv", snow_records))]
         files += [str(p) for p in save_figure(plot_fleet(cmp), out / "fleet")]
         files += [str(p) for p in save_figure(plot_snow_ranking(snow), out / "snow_ranking")]
@@ -299,11 +272,13 @@ def compare(
             "description": crit.description,
         },
         "ranking": ranking,
+        "intervals": intervals,
         "snow_ranking": snow_records,
         "order_changes": changes,
         "real_contact": real_records,
         "real_ranking": {
             "proxy": proxy,
+            "tie_rule": GLIDE_NOTE,
             "description": PROXIES[proxy].description,
             "ranking": real_ranking,
         }
@@ -333,8 +308,7 @@ def compare(
             ],
         )
         console.print(f"criterion: {crit.description}")
-        if any(r["tied"] for r in ranking):
-            console.print("n= : a tie (equal values; skis with the same content always tie)")
+        print_fleet_uncertainty(ranking, crit.column, intervals)
         print_table(
             f"Best ski by {crit.name} across snow",
             ["snow [MPa]", "order (best first)"],
@@ -348,7 +322,7 @@ def compare(
                 ["rank", "ski", "base", p.column, "real [mm²]", "viscous [N]", "µ dry", "µ lub."],
                 [
                     [
-                        r["rank"],
+                        f"{r['rank']}=" if r["ties_with"] else str(r["rank"]),
                         r["ski"],
                         r["base"],
                         r[p.column],
@@ -362,6 +336,7 @@ def compare(
                 ],
             )
             console.print(f"proxy: {p.description}")
+            console.print(f"n= : a tie within the glide-test precision ({GLIDE_NOTE})")
             console.print(f"assumptions: {friction_assumptions(friction, snow_obj)}")
         if not changes:
             console.print("the order does not change over the snow range")

@@ -14,12 +14,22 @@ the elastic half-space with force and moment balance (eq. 2–3), grouped into z
   :func:`kick_contact_summary`; with a base texture, the friction proxies over the stride,
   :func:`real_cycle_summary`;
 * skis × bases on one snow: :func:`real_table`, :func:`rank_real` by a proxy of
-  :data:`PROXIES`.
+  :data:`PROXIES` (ties within the glide-test precision, :data:`GLIDE_TEST_PRECISION`,
+  Lemmettylä et al. 2021);
+* an identified ski's answers with 95 % intervals (``compare_fleet(samples=...)``,
+  :func:`interval_records`); rankings mark *a tie within uncertainty* where intervals overlap.
 
 May import: ski, bench, network, identify, pipeline, multiscale, snow
 """
 
-from skisnow.workflows._bases import PROXIES, Proxy, rank_real, real_table
+from skisnow.workflows._bases import (
+    GLIDE_TEST_PRECISION,
+    GLIDE_TEST_PRECISION_RANGE,
+    PROXIES,
+    Proxy,
+    rank_real,
+    real_table,
+)
 from skisnow.workflows._cycle import (
     UNLOADED_MASS,
     ZONES,
@@ -37,6 +47,7 @@ from skisnow.workflows._fleet import (
     compare_fleet,
     rank_across_snow,
 )
+from skisnow.workflows._fleet_intervals import interval_records
 from skisnow.workflows._history import (
     MAX_GAP_FACTOR,
     LoadHistory,
@@ -62,6 +73,8 @@ __all__ = [
     "CONTACT_TOLERANCE",
     "CRITERIA",
     "DEFAULT_LOAD_POSITION",
+    "GLIDE_TEST_PRECISION",
+    "GLIDE_TEST_PRECISION_RANGE",
     "MAX_GAP_FACTOR",
     "POOR_MATCH_DISTANCE",
     "PROXIES",
@@ -82,6 +95,7 @@ __all__ = [
     "check_positions",
     "compare_fleet",
     "competition_ranks",
+    "interval_records",
     "kick_contact_summary",
     "match_pairs",
     "pair_distance",

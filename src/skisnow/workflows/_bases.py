@@ -5,8 +5,13 @@ of a comparison has the same macro base material), so each ski is solved once pe
 micro curves of every base × snow are evaluated on its pressure
 (:func:`skisnow.multiscale.real_contact`). The ranking follows the fleet's rule
 (:func:`~skisnow.workflows.competition_ranks`: 1 + the entries strictly better, ties share a
-rank); the proxies are deterministic, so entries tie only when equal, until uncertainty
-intervals (issue 25) are plugged into the same rule.
+rank). The proxies rank glide, and a glide test on snow resolves differences between skis
+only down to its precision: a custom skitester on real snow measured glide with a relative
+variation of 0.6–1.1 % (Lemmettylä et al. 2021, "The Development and Precision of a Custom-Made
+Skitester", Front. Mech. Eng. 7:661947). Each proxy value v therefore stands for the interval
+v·(1 ± :data:`GLIDE_TEST_PRECISION`) (the worse end, 1.1 %), and two entries whose intervals
+overlap — a relative difference below about 2.2 % — are *a tie within glide-test precision*:
+a predicted difference no glide test could confirm.
 """
 
 from __future__ import annotations
@@ -19,7 +24,21 @@ import numpy as np
 
 from skisnow._errors import InputError
 
-__all__ = ["PROXIES", "Proxy", "rank_real", "real_table"]
+__all__ = [
+    "GLIDE_TEST_PRECISION",
+    "GLIDE_TEST_PRECISION_RANGE",
+    "PROXIES",
+    "Proxy",
+    "rank_real",
+    "real_table",
+]
+
+#: Relative variation of glide measured by a skitester on snow (Lemmettylä et al. 2021: 0.6–1.1 %
+#: over three conditions).
+GLIDE_TEST_PRECISION_RANGE: tuple[float, float] = (0.006, 0.011)
+#: The precision the glide rankings use: the worse end of the range (a tie is not broken by a
+#: difference that the less precise of the reported conditions could not resolve).
+GLIDE_TEST_PRECISION: float = GLIDE_TEST_PRECISION_RANGE[1]
 
 
 @dataclass(frozen=True)
@@ -103,22 +122,31 @@ def real_table(
     return records
 
 
-def rank_real(records: Sequence[dict[str, Any]], proxy: str) -> list[dict[str, Any]]:
+def rank_real(
+    records: Sequence[dict[str, Any]], proxy: str, *, precision: float = GLIDE_TEST_PRECISION
+) -> list[dict[str, Any]]:
     """The records from best to worst by ``proxy`` (a key of :data:`PROXIES`; NaN last), with
-    competition ranks (ties share a rank) and the entries each ties with."""
+    competition ranks (ties share a rank) and the entries each ties with: equal values, or
+    values within the glide-test precision of each other (``precision``, relative; module
+    docstring; ``within_glide_test_precision`` marks those ties; 0: only equal values tie)."""
     from skisnow.workflows._ties import competition_ranks, tied_with
 
     if proxy not in PROXIES:
         raise InputError(f"unknown proxy {proxy!r}; choose one of {', '.join(PROXIES)}")
+    if not (np.isfinite(precision) and 0.0 <= precision < 1.0):
+        raise InputError(f"glide-test precision must be a fraction in [0, 1), got {precision!r}")
     p = PROXIES[proxy]
     v = np.array([float(r[p.column]) for r in records])
-    ranks = competition_ranks(v, better=p.better)
-    ties = tied_with(v, better=p.better)
+    half = np.abs(v) * precision
+    bounds = np.column_stack([v - half, v + half])
+    ranks = competition_ranks(v, better=p.better, intervals=bounds)
+    ties = tied_with(v, better=p.better, intervals=bounds)
     key = np.where(np.isnan(v), np.inf, v if p.better == "lower" else -v)
     order = np.argsort(key, kind="stable")
     label = [f"{r['ski']} × {r['base']}" for r in records]
     return [
         {"rank": int(ranks[i]), "ski": records[i]["ski"], "base": records[i]["base"],
-         p.column: v[i], "ties_with": [label[j] for j in ties[i]]}
+         p.column: v[i], "ties_with": [label[j] for j in ties[i]],
+         "within_glide_test_precision": any(v[j] != v[i] for j in ties[i])}
         for i in order
     ]  # fmt: skip

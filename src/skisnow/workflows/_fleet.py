@@ -42,7 +42,9 @@ _ZONES = ("rear", "middle", "front", "total", "rear_glide", "kick", "front_glide
 class FleetEntry:
     """One ski of a comparison: its metrics and its two contact cases (SI units).
 
-    ``cases`` maps ``'half'`` and ``'full'`` (body weight) to :class:`skisnow.pipeline.Case`.
+    ``cases`` maps ``'half'`` and ``'full'`` (body weight) to :class:`skisnow.pipeline.Case`;
+    ``intervals`` the same keys to their :class:`~skisnow.pipeline.Intervals` when the ski
+    carries its posterior and samples were asked for (``None``: no uncertainty recorded).
     """
 
     ski: FleetSki
@@ -50,6 +52,13 @@ class FleetEntry:
     route_note: str | None
     metrics: Any  # skisnow.bench.SkiMetrics
     cases: dict[str, Any] = field(repr=False)
+    intervals: dict[str, Any] | None = field(default=None, repr=False)
+
+    def interval(self, column: str) -> tuple[float, float] | None:
+        """The 95 % interval of a record column (field unit), ``None`` where there is none."""
+        from skisnow.workflows._fleet_intervals import column_interval
+
+        return column_interval(self.intervals, column)
 
     def record(self) -> dict[str, Any]:
         """One flat record in field units (mm, cm², kPa, kg, N/mm) — a row of the table."""
@@ -183,19 +192,26 @@ class FleetComparison:
     def ranking(self, criterion: str) -> list[dict[str, Any]]:
         """The skis from best to worst by ``criterion`` (a key of :data:`CRITERIA`).
 
-        Tied skis (equal values: identical skis) share a rank (``1, 1, 3``), say so in
-        ``tied`` and name each other in ``tied_with`` (:mod:`skisnow.workflows._ties`).
+        Tied skis (equal values: identical skis; or, for skis carrying their posterior,
+        overlapping 95 % intervals: *a tie within uncertainty*, ``within_uncertainty``) share
+        a rank (``1, 1, 3``), say so in ``tied`` and name each other in ``tied_with``
+        (:mod:`skisnow.workflows._ties`); ``interval`` is ``[low, high]`` or ``None`` (no
+        uncertainty recorded: the value counts as exact).
         """
         from skisnow.workflows._ties import competition_ranks, tied_with
 
         crit = _criterion(criterion)
         recs = self.records()
         values = [float(r[crit.column]) for r in recs]
-        ranks = competition_ranks(values, better=crit.better)
-        ties = tied_with(values, better=crit.better)
+        ivs = [e.interval(crit.column) for e in self.entries]
+        bounds = [iv if iv is not None else (v, v) for iv, v in zip(ivs, values, strict=True)]
+        ranks = competition_ranks(values, better=crit.better, intervals=bounds)
+        ties = tied_with(values, better=crit.better, intervals=bounds)
         return [
             {"rank": int(ranks[i]), "tied": bool(ties[i]), "ski": recs[i]["ski"],
-             crit.column: values[i], "tied_with": [recs[j]["ski"] for j in ties[i]]}
+             crit.column: values[i], "tied_with": [recs[j]["ski"] for j in ties[i]],
+             "interval": None if ivs[i] is None else list(ivs[i]),
+             "within_uncertainty": any(values[j] != values[i] for j in ties[i])}
             for i in crit.order(values)
         ]  # fmt: skip
 
@@ -223,6 +239,7 @@ def _entry(
     load_position: float,
     n_points: int,
     ski_model: str,
+    samples: int = 0,
 ) -> FleetEntry:
     from skisnow.bench import ski_metrics
 
@@ -248,12 +265,11 @@ def _entry(
         for key, m, h in zip(_LOADS, masses, heights, strict=True)
     }
     metrics = ski_metrics(fs.ski, body_mass=body_mass, load_position=load_position)
+    from skisnow.workflows._fleet_intervals import case_set_intervals
+
+    intervals = case_set_intervals(cases, samples=samples)
     return FleetEntry(
-        ski=fs,
-        route=route,
-        route_note=note,
-        metrics=metrics,
-        cases=cases,
+        ski=fs, route=route, route_note=note, metrics=metrics, cases=cases, intervals=intervals
     )
 
 
@@ -266,6 +282,7 @@ def compare_fleet(
     ski_model: Literal["rigid", "flexible"] = "rigid",
     n_points: int = 4096,
     progress: Callable[[int, int], None] | None = None,
+    samples: int = 0,
 ) -> FleetComparison:
     """Compare the skis of a fleet for one athlete on one snow.
 
@@ -286,6 +303,9 @@ def compare_fleet(
         Stations along each ski.
     progress
         ``progress(done, total)`` after each ski.
+    samples
+        Posterior samples for the 95 % intervals of the contact answers of a ski that carries
+        its posterior (an identified ski; :func:`skisnow.pipeline.case_intervals`); 0: none.
 
     Returns
     -------
@@ -306,6 +326,7 @@ def compare_fleet(
                     load_position=load_position,
                     n_points=n_points,
                     ski_model=ski_model,
+                    samples=samples,
                 )
             )
         except SkisnowError as exc:
