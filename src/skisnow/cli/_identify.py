@@ -74,6 +74,7 @@ def identify(
     if out.suffix.lower() != ".json":
         raise InputError(f"--out {out}: the identified ski is written as a ski file (.json)")
     bench = read_bench(bench_file)
+    accepted = _accepted_implausible(bench_file)
     from skisnow._checks import check_memory
 
     # the fit's Jacobian: one row per bench sample, one column per spline coefficient
@@ -110,6 +111,12 @@ def identify(
         if fmt not in ("png", "svg", "pdf"):
             raise InputError(f"--figure {figure}: use a .png, .svg or .pdf file name")
         save_figure(plot_passport(res.ski), figure.with_suffix(""), formats=(fmt,))
+    warns, causes = list(res.warnings), list(res.causes)
+    if accepted is not None:  # the data themselves, named before the fit's own causes
+        causes.insert(0, "implausible bench")
+        warns.insert(0, f"implausible bench accepted with --allow-implausible: {accepted} A "
+                     "misfit above the noise may come from these data, not from the causes "
+                     "named below.")  # fmt: skip
     doc = {
         "ski": res.ski.name,
         "file": str(out),
@@ -123,7 +130,7 @@ def identify(
         "converged": res.converged,
         "misfit_rms_sigma": res.misfit,
         "chi2_bound": res.chi2_bound,
-        "causes": list(res.causes),
+        "causes": causes,
         "mesh_mm": res.mesh_error[2] * 1e3,
         "mesh_error_rms_um": res.mesh_error[0] * 1e6,
         "mesh_error_max_um": res.mesh_error[1] * 1e6,
@@ -145,7 +152,7 @@ def identify(
             for m, p, s, f in res.noise_cases
         ],
         "message": res.message,
-        "warnings": list(res.warnings),
+        "warnings": warns,
         "seconds": res.seconds,
         "gcv": [
             {"lambda": lam, "gcv": g, "misfit_rms_sigma": m, "edf": e} for lam, g, m, e in res.gcv
@@ -155,7 +162,7 @@ def identify(
     if json_out:
         emit_json(doc)
         return
-    for w in res.warnings:
+    for w in warns:
         _say(f"warning: {w}", style="yellow")
     skip = ("gcv", "warnings", "outliers", "noise_per_case")
     rows = [[k, v] for k, v in doc.items() if k not in skip]
@@ -165,3 +172,20 @@ def identify(
         ["lambda", "GCV", "misfit rms / σ", "edf"],
         [[g["lambda"], g["gcv"], g["misfit_rms_sigma"], g["edf"]] for g in doc["gcv"]],
     )
+
+
+def _accepted_implausible(path: Path) -> str | None:
+    """What the strict bench checks would have refused in ``path`` when --allow-implausible
+    let it through (``None``: nothing, or the override not given)."""
+    from skisnow._checks import allow_implausible, implausible_allowed
+    from skisnow._errors import ImplausibleValueError
+    from skisnow.bench import read_bench
+
+    if not implausible_allowed():
+        return None
+    with allow_implausible(False):
+        try:
+            read_bench(path)
+        except ImplausibleValueError as exc:
+            return str(exc).split(" If you really mean it")[0]
+    return None

@@ -22,9 +22,11 @@ __all__ = [
     "UNIT_KEYS",
     "SamplesOption",
     "check_samples",
+    "cycle_uncertainty_doc",
     "fleet_intervals",
     "interval_text",
     "no_uncertainty_note",
+    "print_cycle_uncertainty",
     "print_fleet_uncertainty",
     "print_intervals",
     "uncertainty_doc",
@@ -169,3 +171,42 @@ def print_fleet_uncertainty(
         console.print("n= : a tie within uncertainty (the skis' 95 % intervals overlap)")
     elif any(r["tied"] for r in ranking):
         console.print("n= : a tie (equal values; skis with the same content always tie)")
+
+
+#: cycle answer (:data:`skisnow.workflows.CYCLE_QUANTITIES`) -> (key in field units, factor)
+CYCLE_KEYS: dict[str, tuple[str, float]] = {
+    "kick_contact_time": ("kick_contact_time_s", 1.0),
+    "kick_fraction_of_loaded": ("kick_fraction_of_loaded", 1.0),
+    "max_kick_share": ("max_kick_share", 1.0),
+    "max_kick_length": ("max_kick_length_mm", 1e3),
+    "mean_total_length": ("mean_total_length_mm", 1e3),
+    "peak_pressure": ("peak_pressure_kpa", 1e-3),
+    "mean_rear_share": ("mean_rear_share", 1.0),
+}
+
+
+def cycle_uncertainty_doc(iv: Any, note: str) -> dict[str, Any]:
+    """The ``uncertainty`` section of one cycle (field units), or why there is none."""
+    doc = uncertainty_doc(iv, note=note, zones=())
+    if iv is not None:
+        doc["method"] = doc["method"].replace("each solved as the case", "each run over the cycle")
+        doc["intervals"] = {
+            key: [iv.low[q] * f, iv.high[q] * f] for q, (key, f) in CYCLE_KEYS.items()
+        }
+        doc["estimates"] = {key: iv.estimate[q] * f for q, (key, f) in CYCLE_KEYS.items()}
+    return doc
+
+
+def print_cycle_uncertainty(name: str, doc: dict[str, Any]) -> None:
+    """One line per answer of a cycle with its interval (or why none)."""
+    from skisnow.cli._render import console
+
+    if not doc["recorded"]:
+        console.print(f"{name}: {doc['note']}")
+        return
+    parts = [f"{k} {interval_text(*v)}" for k, v in doc["intervals"].items()]
+    mc = 100 * doc["mc_error_of_ends_max_fraction_of_width"]
+    console.print(
+        f"{name}: {100 * doc['level']:g} % intervals from {doc['samples']} posterior samples "
+        f"(Monte Carlo error of the ends ≤ {mc:.0f} % of the width): {'; '.join(parts)}"
+    )

@@ -163,11 +163,33 @@ def cycle(
     show_template: Annotated[
         bool, typer.Option("--show-template", help="Print the template's knots and source.")
     ] = False,
+    samples: Annotated[
+        int,
+        typer.Option(
+            "--samples",
+            help="Posterior samples of an identified ski for the 95 % intervals of the cycle's "
+            "summary (default 40: each sample runs the whole cycle; the Monte Carlo error of "
+            "the ends is reported; 0: no intervals). A ski without bands has none.",
+        ),
+    ] = 40,
     json_out: JsonOption = False,
 ) -> None:
     """The contact over a load cycle, frame by frame (warm-started): zones, pressures, and when
-    and for how long the grip wax touches the snow."""
-    from skisnow.workflows import TEMPLATES, read_load_history, run_cycle, template_history
+    and for how long the grip wax touches the snow (with 95 % intervals for an identified ski)."""
+    from skisnow.cli._intervals import (
+        check_samples,
+        cycle_uncertainty_doc,
+        no_uncertainty_note,
+        print_cycle_uncertainty,
+    )
+    from skisnow.workflows import (
+        TEMPLATES,
+        cycle_intervals,
+        read_load_history,
+        resolve_ski,
+        run_cycle,
+        template_history,
+    )
 
     if (load_history is None) == (template is None):
         raise InputError("give exactly one of --load-history FILE or --template NAME")
@@ -186,6 +208,7 @@ def cycle(
         raise InputError(f"--animation-speed must be a positive number, got {animation_speed!r}")
     if frames is not None and frames < 2:
         raise InputError(f"--frames must be at least 2, got {frames}")
+    check_samples(samples)
     histories = []
     if template is not None:
         names = list(TEMPLATES) if template == "all" else [template]
@@ -226,11 +249,12 @@ def cycle(
     per_frame = 7 * 8 * 8 + (2 * 8 * points if animation is not None else 0)
     check_memory(n_frames * per_frame, where=where, what=f"{n_frames:,} frames of {points} "
                  "stations", hint="use fewer --frames")  # fmt: skip
-    results = []
+    results, uncertainty = [], {}
+    fs = resolve_ski(ski)  # once (a bench file is identified once for every cycle)
     for name, history in histories:
         with progress_bar(f"cycle {name}", disable=json_out) as update:
             ds = run_cycle(
-                ski,
+                fs,
                 history,
                 snow_modulus=snow_modulus_mpa * 1e6,
                 profile_source=profile_source,  # type: ignore[arg-type]
@@ -244,6 +268,10 @@ def cycle(
             )
         report_converged(bool(ds["converged"].all()))
         results.append((name, ds))
+        with progress_bar(f"intervals {name}", disable=json_out or not fs.ski.has_posterior):
+            iv = cycle_intervals(fs, history, ds, snow_modulus=snow_modulus_mpa * 1e6,
+                                 samples=samples, n_points=points, ski_model=ski_model)  # fmt: skip
+        uncertainty[name] = cycle_uncertainty_doc(iv, no_uncertainty_note(fs.ski, samples))
     files: list[str] = []
     for name, ds in results:
         # the same names for one cycle as for several: cycle_<name>.csv, .nc, .png, .svg
@@ -280,6 +308,7 @@ def cycle(
                 "ski": results[0][1].attrs["ski"],
                 "snow_modulus_mpa": snow_modulus_mpa,
                 "summaries": summaries,
+                "uncertainty": uncertainty,
                 "real_contact": real,
                 "friction_assumptions": results[0][1].attrs.get("friction", ""),
                 "notes": notes,
@@ -322,6 +351,8 @@ def cycle(
             for s in summaries
         ],
     )
+    for name, doc in uncertainty.items():
+        print_cycle_uncertainty(name, doc)
     if real:
         print_table(
             f"Friction proxies over the stride: base {results[0][1].attrs['base']} × snow "

@@ -11,7 +11,8 @@ the elastic half-space with force and moment balance (eq. 2–3), grouped into z
   :func:`pair_distance`);
 * load cycles: :class:`LoadHistory`, :func:`read_load_history`, :data:`TEMPLATES`,
   :func:`template_history`, :func:`run_cycle` (an xarray Dataset over time),
-  :func:`kick_contact_summary`; with a base texture, the friction proxies over the stride,
+  :func:`kick_contact_summary` (for an identified ski with 95 % intervals over posterior
+  samples, :func:`cycle_intervals`); with a base texture, the friction proxies over the stride,
   :func:`real_cycle_summary`;
 * skis × bases on one snow: :func:`real_table`, :func:`rank_real` by a proxy of
   :data:`PROXIES` (ties within the glide-test precision, :data:`GLIDE_TEST_PRECISION`,
@@ -37,6 +38,7 @@ from skisnow.workflows._cycle import (
     real_cycle_summary,
     run_cycle,
 )
+from skisnow.workflows._cycle_intervals import CYCLE_QUANTITIES, cycle_intervals, cycle_quantities
 from skisnow.workflows._fleet import (
     CRITERIA,
     DEFAULT_LOAD_POSITION,
@@ -72,6 +74,7 @@ __all__ = [
     "CAMBER_TOLERANCE",
     "CONTACT_TOLERANCE",
     "CRITERIA",
+    "CYCLE_QUANTITIES",
     "DEFAULT_LOAD_POSITION",
     "GLIDE_TEST_PRECISION",
     "GLIDE_TEST_PRECISION_RANGE",
@@ -95,6 +98,8 @@ __all__ = [
     "check_positions",
     "compare_fleet",
     "competition_ranks",
+    "cycle_intervals",
+    "cycle_quantities",
     "interval_records",
     "kick_contact_summary",
     "match_pairs",
