@@ -10,6 +10,7 @@ import typer
 from skisnow._errors import InputError
 from skisnow._names import file_stem
 from skisnow.cli._app import app, interrupted_by_user, report_unconverged
+from skisnow.cli._intervals import SamplesOption, check_samples
 from skisnow.cli._media import (
     BaseOption,
     FilmCutoffOption,
@@ -322,6 +323,7 @@ def report(
             "grid: 26 masses x 6 positions x 10 moduli) and link it from the report.",
         ),
     ] = False,
+    samples: SamplesOption = 200,
     json_out: JsonOption = False,
 ) -> None:
     """Write one self-contained HTML report of a ski (metrics, zones at standard loads, maps,
@@ -361,6 +363,7 @@ def report(
                              f"({', '.join(SHIPPED_SKIS)}) nor an existing file")  # fmt: skip
     if len(set([ski, *(compare_with or ())])) != 1 + len(compare_with or ()):
         raise InputError("--compare-with: each ski once (a ski compared with itself says nothing)")
+    check_samples(samples)
     n_maps = len(parse_values(mass_kg, name="--mass-kg")) * len(
         parse_values(snow_modulus_mpa, name="--snow-modulus-mpa"))  # fmt: skip
     check_solves(n_maps, where="--mass-kg x --snow-modulus-mpa", what=f"maps of {n_maps} points",
@@ -388,6 +391,7 @@ def report(
             n_points=n_points,
             ski_model=ski_model,
             progress=bar,
+            samples=samples,
         )  # fmt: skip
     from skisnow.sweep import unconverged_points
 
@@ -419,6 +423,7 @@ def report(
             load_position=load_position_mm * 1e-3,
             n_points=n_points,
             ski_model=ski_model,  # type: ignore[arg-type]
+            samples=samples,
         )
         for spec, message in fleet.failures:
             say(f"not compared: {spec}: {message}", style="bold red")

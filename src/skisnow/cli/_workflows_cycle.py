@@ -168,10 +168,10 @@ def cycle(
         typer.Option(
             "--samples",
             help="Posterior samples of an identified ski for the 95 % intervals of the cycle's "
-            "summary (default 40: each sample runs the whole cycle; the Monte Carlo error of "
+            "summary (default 100: each sample runs the whole cycle; the Monte Carlo error of "
             "the ends is reported; 0: no intervals). A ski without bands has none.",
         ),
-    ] = 40,
+    ] = 100,
     json_out: JsonOption = False,
 ) -> None:
     """The contact over a load cycle, frame by frame (warm-started): zones, pressures, and when

@@ -89,6 +89,7 @@ def _standard_loads(study: Any) -> Section:
         floatfmt=".3g",
     )  # fmt: skip
     first = study.cases[0]
+    iv_text, iv_items = _uncertainty(study)
     return Section(
         "Contact at the standard loads",
         (
@@ -104,9 +105,49 @@ def _standard_loads(study: Any) -> Section:
             "merge across the kick zone they are the regions and say so. Regions are fixed by "
             "the ski (rear glide: tail to the rear kick-zone mark; kick zone; front glide; "
             "without a kick zone, rear and front of the balance point) and never jump.",
+            iv_text,
         ),
-        (table, *_contact_figures(study)),
+        (table, *iv_items, *_contact_figures(study)),
     )
+
+
+def _uncertainty(study: Any) -> tuple[str, tuple[Table, ...]]:
+    """The 95 % intervals of the standard cases of an identified ski, or a line saying that the
+    ski carries no uncertainty (its numbers are the ski as given, not exact)."""
+    if not study.intervals:
+        s = study.ski
+        why = ("intervals not computed (no posterior samples asked for)" if s.has_posterior
+               else f"no uncertainty recorded: the ski carries no bands "
+               f"({s.provenance.method or 'a definition'}); the numbers above are those of "
+               "the ski as given, not exact")  # fmt: skip
+        return why, ()
+    rows = []
+    for case, iv in zip(study.cases, study.intervals, strict=True):
+        label = "half" if case.mass < study.body_mass else "full"
+        for zone in ("rear", "middle", "front", "total", "kick"):
+
+            def rng(q: str, f: float, iv=iv, zone=zone) -> str:
+                lo, hi = iv.interval(f"{zone}.{q}")
+                return "—" if np.isnan(lo) else f"{lo * f:.3g} – {hi * f:.3g}"
+
+            rows.append((f"{label} ({case.mass:g} kg)", case.snow_modulus / 1e6, zone,
+                         rng("length", 1e3), rng("area", 1e4), rng("mean_pressure", 1e-3),
+                         rng("max_pressure", 1e-3), rng("load_share", 100.0)))  # fmt: skip
+    first = study.intervals[0]
+    worst = max(iv.worst_mc_error() for iv in study.intervals)
+    note = (
+        f"95 % intervals of the answers above from {first.samples} samples of the identified "
+        "ski's posterior (Laplace posterior of log EI and z0 in its file), each solved as the "
+        "case; an interval is the samples' 2.5–97.5 % quantiles, extended to hold the estimate. "
+        f"Monte Carlo error of the ends ≤ {100 * worst:.0f} % of the width."
+    )
+    table = Table(
+        ["load", "snow modulus [MPa]", "zone", "contact [mm]", "area [cm²]", "mean p [kPa]",
+         "max p [kPa]", "load share [%]"],
+        rows,
+        floatfmt=".3g",
+    )  # fmt: skip
+    return note, (table,)
 
 
 def _rigid_vs_flexible(study: Any) -> Section | None:

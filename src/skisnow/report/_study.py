@@ -47,6 +47,12 @@ class SkiStudy:
     other_cases
         The same standard loads with the other ski model (``()`` when not asked for): the
         rigid-profile method of Kalliorinne et al. (2023) against the flexible ski.
+    intervals
+        One :class:`~skisnow.pipeline.Intervals` per case of ``cases`` (95 % intervals from the
+        posterior samples of an identified ski, :func:`~skisnow.pipeline.case_intervals`);
+        ``()`` when the ski carries no posterior or no samples were asked for.
+    samples
+        The posterior samples asked for (0: none).
     """
 
     ski: Any
@@ -59,6 +65,8 @@ class SkiStudy:
     n_points: int
     ski_model: str = "rigid"
     other_cases: tuple[Case, ...] = field(default=(), repr=False)
+    intervals: tuple[Any, ...] = field(default=(), repr=False)
+    samples: int = 0
 
 
 def standard_cases(
@@ -107,6 +115,7 @@ def study_ski(
     ski_model: str = "rigid",
     compare_models: bool = True,
     progress: Callable[..., None] | None = None,
+    samples: int = 0,
 ) -> SkiStudy:
     """Compute what the report of ``ski`` shows (see the module docstring).
 
@@ -133,6 +142,9 @@ def study_ski(
     progress
         ``progress(done, total, status=...)`` after each map chunk and each standard case (a
         progress bar: the maps of the default grid take about a minute).
+    samples
+        Posterior samples for the 95 % intervals of the standard cases of an identified ski
+        (:attr:`SkiStudy.intervals`; 0 or a ski without posterior: none).
     """
     from skisnow.bench import ski_metrics
     from skisnow.ski import SHIPPED_SKIS, get_ski, ski_to_json
@@ -182,12 +194,20 @@ def study_ski(
                 tick(f"standard loads ({model})")
         return tuple(out)
 
+    from skisnow.pipeline import case_intervals
+
+    main = cases(ski_model)
+    intervals = ()
+    if samples and s.has_posterior:
+        intervals = tuple(case_intervals(c, samples=samples) for c in main)
     return SkiStudy(
         ski=s,
         body_mass=float(body_mass),
         load_position=float(load_position),
         metrics=ski_metrics(s, body_mass=body_mass, load_position=load_position),
-        cases=cases(ski_model),
+        cases=main,
+        intervals=intervals,
+        samples=int(samples),
         other_cases=cases(other) if compare_models else (),
         maps=dataset,
         profile_source=profile_source,
