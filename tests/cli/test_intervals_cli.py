@@ -87,3 +87,34 @@ def test_compare_marks_a_ski_and_its_own_sample_a_tie_within_uncertainty(
     assert "no uncertainty recorded" in recs["skate"]["uncertainty"]
     assert recs["identified.json"]["full_total_length_mm_low"] <= doc["skis"][0][
         "full_total_length_mm"] <= recs["identified.json"]["full_total_length_mm_high"]  # fmt: skip
+
+
+def test_cycle_summary_carries_intervals_for_an_identified_ski(capsys, identified: Path) -> None:
+    args = ["cycle", "--template", "diagonal", "--body-mass-kg", "70", "--snow-modulus-mpa",
+            "100", "--frames", "20", "--points", "1024", "--samples", "8"]  # fmt: skip
+    doc = _json(capsys, [*args[:1], str(identified), *args[1:]])
+    unc = doc["uncertainty"]["diagonal"]
+    assert unc["recorded"] and unc["samples"] == 8
+    for key, (lo, hi) in unc["intervals"].items():
+        assert lo <= unc["estimates"][key] <= hi, key
+    summary = doc["summaries"][0]
+    lo, hi = unc["intervals"]["kick_contact_time_s"]
+    assert lo <= summary["kick_contact_time_s"] <= hi
+    shipped = _json(capsys, [*args[:1], "classic", *args[1:]])
+    assert shipped["uncertainty"]["diagonal"]["recorded"] is False
+    assert "no uncertainty recorded" in shipped["uncertainty"]["diagonal"]["note"]
+
+
+def test_report_shows_intervals_or_says_there_are_none(capsys, tmp_path: Path, identified):
+    from types import SimpleNamespace
+
+    from skisnow.report._report import _uncertainty
+
+    code = main(["report", str(identified), "--out", str(tmp_path), "--mass-kg", "40:80:40",
+                 "--snow-modulus-mpa", "100,200", "--stride", "none", "--samples", "6",
+                 "--points", "1024", "--json"])  # fmt: skip
+    assert code == 0, capsys.readouterr().err
+    html = Path(json.loads(capsys.readouterr().out)["report"]).read_text()
+    assert "95 % intervals of the answers above from 6 samples" in html
+    text, items = _uncertainty(SimpleNamespace(ski=get_ski("classic"), intervals=()))
+    assert "no uncertainty recorded" in text and items == ()
