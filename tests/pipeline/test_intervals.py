@@ -99,3 +99,18 @@ def test_contact_intervals_cover_the_true_ski() -> None:
             total += 1
             inside += iv.low[name] <= true_answers[name] <= iv.high[name]
     assert 56 <= inside <= total, (inside, total)
+
+
+def test_every_shipped_ski_says_it_is_calibrated_not_identified() -> None:
+    from skisnow.ski import PLAUSIBLE_SKIS, REPRODUCTION_SKIS, uncertainty_note
+
+    for names, kind in ((PLAUSIBLE_SKIS, "plausible"), (REPRODUCTION_SKIS, "reproduction")):
+        for name in names:
+            note = uncertainty_note(get_ski(name))
+            assert f"shipped {kind} ski" in note and "not identified" in note
+            assert "no stated interval" in note
+    changed = dataclasses.replace(get_ski("classic"), stiffness_values=tuple(
+        1.1 * v for v in get_ski("classic").stiffness_values))  # fmt: skip
+    assert "shipped" not in uncertainty_note(changed)  # the name alone does not make it shipped
+    assert "no uncertainty recorded" in uncertainty_note(changed)
+    assert "posterior" in uncertainty_note(with_posterior(get_ski("classic")))

@@ -71,11 +71,9 @@ def no_uncertainty_note(ski: Any, samples: int) -> str:
         return "no uncertainty recorded: a given profile carries no bands"
     if ski.has_posterior and samples == 0:
         return "intervals not computed (--samples 0); the ski carries its posterior"
-    method = ski.provenance.method or "a definition"
-    return (
-        f"no uncertainty recorded: ski {ski.name!r} carries no bands ({method}); its answers "
-        "are those of the ski as given, not exact (they count as exact in a ranking)"
-    )
+    from skisnow.ski import uncertainty_note
+
+    return uncertainty_note(ski) + " (in a ranking its values count as exact)"
 
 
 def uncertainty_doc(iv: Any, *, note: str | None = None, zones=INTERVAL_ZONES) -> dict[str, Any]:

@@ -116,10 +116,10 @@ def _uncertainty(study: Any) -> tuple[str, tuple[Table, ...]]:
     ski carries no uncertainty (its numbers are the ski as given, not exact)."""
     if not study.intervals:
         s = study.ski
+        from skisnow.ski import uncertainty_note
+
         why = ("intervals not computed (no posterior samples asked for)" if s.has_posterior
-               else f"no uncertainty recorded: the ski carries no bands "
-               f"({s.provenance.method or 'a definition'}); the numbers above are those of "
-               "the ski as given, not exact")  # fmt: skip
+               else uncertainty_note(s))  # fmt: skip
         return why, ()
     rows = []
     for case, iv in zip(study.cases, study.intervals, strict=True):

@@ -13,7 +13,9 @@ shipped ones :data:`SHIPPED_SKIS` and :func:`get_ski` (a shipped name or a ski f
 (:func:`spline_ski`); ski files (JSON ``skisnow-ski`` v1 and v2, validated, exact round trip;
 v2 adds an identified ski's determined stations and posterior modes):
 :func:`read_ski`, :func:`write_ski`, :func:`ski_to_json`; samples of an identified ski from
-its posterior, :func:`sample_skis`; the beam's finite elements, which the
+its posterior, :func:`sample_skis`, and what a ski's answers are worth in words,
+:func:`uncertainty_note` (the shipped skis: calibrated, not identified; no stated interval);
+the beam's finite elements, which the
 identification reuses (:func:`beam_stiffness_matrix`, :func:`hermite_interpolate`,
 :func:`boot_load_vector`, :class:`BeamLcp`, …) and beam references for the tests
 (:func:`cantilever_tip_deflection`, :func:`three_point_bending_deflection`); metrics of a loaded
@@ -73,7 +75,7 @@ from skisnow.ski._metrics import (
     wax_pocket,
     wax_pocket_length,
 )
-from skisnow.ski._posterior import sample_skis
+from skisnow.ski._posterior import sample_skis, uncertainty_note
 from skisnow.ski._registry import (
     PLAUSIBLE_SKIS,
     REPRODUCTION_SKIS,
@@ -202,6 +204,7 @@ __all__ = [
     "support_line",
     "three_point_bending_deflection",
     "train_network",
+    "uncertainty_note",
     "wax_pocket",
     "wax_pocket_length",
     "write_ski",

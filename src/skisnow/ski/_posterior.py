@@ -21,7 +21,7 @@ from skisnow._errors import InputError
 from skisnow.ski._lcp import lower_hull_bracket
 from skisnow.ski._skis import Ski
 
-__all__ = ["sample_skis"]
+__all__ = ["sample_skis", "uncertainty_note"]
 
 
 def _rest(x: NDArray[np.float64], z: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -65,3 +65,34 @@ def sample_skis(ski: Ski, n: int, *, seed: int = 0) -> list[Ski]:
             )
         )
     return out
+
+
+def uncertainty_note(ski: Ski) -> str:
+    """What the uncertainty of ``ski``'s answers is worth, in words (one place for every output).
+
+    An identified ski carries its posterior (intervals can be drawn). A shipped ski is a
+    *calibration*, not an identification: its EI(x) and z0(x) were fitted to the captions of
+    Kalliorinne et al. (2023), Figs. 4-7 (the plausible skis under the practitioners' limits, the
+    reproduction skis to the captions alone), and carries no stated interval — no defensible
+    source exists: the residuals of the calibration say how well the captions are reproduced,
+    not how far the ski is from a real one, and a virtual bench of the ski itself would only say
+    how well a bench determines it. Any other ski without bands is a definition as given.
+    """
+    from skisnow.ski._registry import PLAUSIBLE_SKIS, REPRODUCTION_SKIS, get_ski
+
+    if ski.has_posterior:
+        return f"ski {ski.name!r} carries the posterior of its identification"
+    for names, kind in ((PLAUSIBLE_SKIS, "plausible"), (REPRODUCTION_SKIS, "reproduction")):
+        if ski.name in names and get_ski(ski.name) == ski:
+            return (
+                f"no uncertainty recorded: {ski.name!r} is a shipped {kind} ski, calibrated to "
+                "the captions of Kalliorinne et al. (2023), Figs. 4-7, not identified from a "
+                "bench; it carries no stated interval (the calibration's residuals say how well "
+                "the captions are reproduced, not how far the ski is from a real one), so its "
+                "answers are those of the ski as defined, not exact"
+            )
+    method = ski.provenance.method or "a definition"
+    return (
+        f"no uncertainty recorded: ski {ski.name!r} carries no bands ({method}); its answers "
+        "are those of the ski as given, not exact"
+    )
