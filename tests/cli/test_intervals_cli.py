@@ -118,3 +118,10 @@ def test_report_shows_intervals_or_says_there_are_none(capsys, tmp_path: Path, i
     assert "95 % intervals of the answers above from 6 samples" in html
     text, items = _uncertainty(SimpleNamespace(ski=get_ski("classic"), intervals=()))
     assert "no uncertainty recorded" in text and items == ()
+
+
+def test_the_passport_states_what_the_ski_is_worth(capsys, identified: Path) -> None:
+    shipped = _json(capsys, ["skis", "--show", "skate"])
+    assert "shipped plausible ski" in shipped["uncertainty"]
+    assert "not identified" in shipped["uncertainty"]
+    assert "posterior" in _json(capsys, ["skis", "--show", str(identified)])["uncertainty"]

@@ -97,6 +97,8 @@ def skis(
         if fmt not in ("png", "svg", "pdf"):
             raise InputError(f"--figure {figure}: use a .png, .svg or .pdf file name")
         save_figure(plot_passport(ski), figure.with_suffix(""), formats=(fmt,))
+    from skisnow.ski import uncertainty_note
+
     doc = ski_to_document(ski)
     summary = {k: doc[k] for k in ("name", "kind", "x_tail_mm", "x_tip_mm", "width_mm",
                                    "kick_zone_mm", "boot_plate_mm")}  # fmt: skip
@@ -110,6 +112,7 @@ def skis(
                 "stations": table,
                 "metrics": pp.metrics,
                 "provenance": doc["provenance"],
+                "uncertainty": uncertainty_note(ski),
                 "file": None if out is None else str(out),
                 "figure": None if figure is None else str(figure),
             }
@@ -134,6 +137,7 @@ def skis(
                  ["created", prov["created_utc"]], ["software", prov["software"]]]  # fmt: skip
     prov_rows += [[k, v] for k, v in prov["details"].items()]
     prov_rows += [[f"source {i + 1}", s] for i, s in enumerate(prov["sources"])]
+    prov_rows += [["uncertainty", uncertainty_note(ski)]]
     print_table("Provenance", ["", ""], prov_rows)
 
 
