@@ -82,6 +82,14 @@ def test_compare_marks_a_ski_and_its_own_sample_a_tie_within_uncertainty(
     assert rank["skate"]["interval"] is None
     lo, hi = a["interval"]
     assert lo <= a["full_total_mean_pressure_kpa"] <= hi
+    col = "full_total_mean_pressure_kpa"
+    for rec in doc["snow_ranking"]:  # across snow: the same intervals and ties on every modulus
+        lo, hi = rec[f"identified.json_{col}_low"], rec[f"identified.json_{col}_high"]
+        assert lo <= rec[f"identified.json_{col}"] <= hi
+        assert rec[f"skate_{col}_low"] == rec[f"skate_{col}_high"] == rec[f"skate_{col}"]
+        if rec["snow_modulus_mpa"] == 100:
+            assert rec["identified.json_rank"] == rec["sample.json_rank"]
+            assert rec[f"identified.json_{col}_low"] == pytest.approx(a["interval"][0])
     recs = {r["ski"]: r for r in doc["intervals"]}
     assert recs["identified.json"]["samples"] == 30
     assert "no uncertainty recorded" in recs["skate"]["uncertainty"]

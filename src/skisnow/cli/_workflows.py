@@ -212,12 +212,22 @@ def compare(
     records = cmp.records()
     ranking = cmp.ranking(criterion)
     with progress_bar("ranking across snow", disable=json_out) as update:
-        snow = rank_across_snow(cmp, criterion, moduli * 1e6, n_points=points, progress=update)
+        snow = rank_across_snow(cmp, criterion, moduli * 1e6, n_points=points, progress=update,
+                                samples=samples)  # fmt: skip
     snow_records = [
         {
             "snow_modulus_mpa": float(e * 1e-6),
             **{f"{s}_{crit.column}": float(snow.values[i, j]) for i, s in enumerate(snow.skis)},
             **{f"{s}_rank": int(snow.ranks[i, j]) for i, s in enumerate(snow.skis)},
+            **(
+                {}
+                if snow.intervals is None
+                else {
+                    f"{s}_{crit.column}_{end}": float(snow.intervals[i, j, k])
+                    for i, s in enumerate(snow.skis)
+                    for k, end in enumerate(("low", "high"))
+                }
+            ),
             "best": snow.winners()[j],
             "order": snow.order_text(j),
         }

@@ -368,6 +368,9 @@ class SnowRanking:
     values: np.ndarray
     ranks: np.ndarray
     changes: tuple[tuple[float, float, tuple[str, ...], tuple[str, ...]], ...]
+    #: ``(n_skis, n_moduli, 2)``: the 95 % interval of each value (low = high for a ski
+    #: without bands; ``None`` for a ranking made without samples)
+    intervals: np.ndarray | None = None
 
     def winners(self) -> list[str]:
         """The best ski at each modulus (tied best skis joined by `` = ``)."""
@@ -392,12 +395,15 @@ def rank_across_snow(
     *,
     n_points: int = 4096,
     progress: Callable[[int, int], None] | None = None,
+    samples: int = 0,
 ) -> SnowRanking:
     """Rank the compared skis by ``criterion`` on each snow modulus [Pa] of ``snow_moduli``.
 
     Each (ski, modulus) is the comparison's full-body-weight case on that snow (the loaded
     profile does not depend on the snow and is computed once per ski; the contact along the
-    moduli is warm-started from the previous one).
+    moduli is warm-started from the previous one). With ``samples``, a ski carrying its
+    posterior gets the 95 % interval of its value on every modulus (``intervals``), and skis
+    whose intervals overlap tie there (a tie within uncertainty).
     """
     crit = _criterion(criterion)
     moduli = np.asarray(sorted(float(e) for e in snow_moduli))
@@ -444,13 +450,21 @@ def rank_across_snow(
             if progress is not None:
                 progress(done, total)
     labels = tuple(e.ski.label for e in entries)
+    from skisnow.workflows._fleet_intervals import snow_intervals
     from skisnow.workflows._ties import competition_ranks
 
+    bounds = np.stack([values, values], axis=-1)  # (skis, moduli, 2); a ski without bands: exact
+    for i, entry in enumerate(entries if crit.snow_dependent else ()):
+        c = comparison
+        iv = snow_intervals(entry, lambda z: _value(crit, z), values[i], moduli,
+                            body_mass=c.body_mass, load_position=c.load_position,
+                            ski_model=c.ski_model, samples=samples, n_points=n_points)  # fmt: skip
+        bounds[i] = bounds[i] if iv is None else iv
     ranks = np.empty_like(values, dtype=np.int64)
     orders = []
     for j in range(moduli.size):
         order = crit.order(values[:, j])
-        ranks[:, j] = competition_ranks(values[:, j], better=crit.better)
+        ranks[:, j] = competition_ranks(values[:, j], better=crit.better, intervals=bounds[:, j])
         # the order with its ties: skis sharing a rank form one group (sorted by name)
         groups: dict[int, list[str]] = {}
         for k in order:
@@ -468,6 +482,7 @@ def rank_across_snow(
         values=values,
         ranks=ranks,
         changes=changes,
+        intervals=bounds if samples else None,
     )
 
 

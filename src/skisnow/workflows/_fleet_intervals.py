@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["case_set_intervals", "column_interval", "interval_records"]
+__all__ = ["case_set_intervals", "column_interval", "interval_records", "snow_intervals"]
 
 #: the quantity of a record column's tail -> (attribute of the zone, factor from SI)
 _COLUMNS = {
@@ -84,3 +84,42 @@ def interval_records(
             rec[f"{col}_low"], rec[f"{col}_high"] = float(lo), float(hi)
         out.append(rec)
     return out
+
+
+def snow_intervals(
+    entry: Any,
+    value: Any,
+    estimates: np.ndarray,
+    moduli: np.ndarray,
+    *,
+    body_mass: float,
+    load_position: float,
+    ski_model: str,
+    samples: int,
+    n_points: int,
+    seed: int = 0,
+) -> np.ndarray | None:
+    """95 % intervals, shape ``(moduli, 2)``, of a criterion ``value(zones)`` on each snow
+    modulus [Pa] for the ski of ``entry`` (``estimates``: its values there); ``None`` without a
+    posterior or samples. Each posterior sample is solved at full body weight on every modulus
+    (warm-started along the moduli, the beam route)."""
+    from skisnow.pipeline import sample_intervals, solve_case
+
+    ski = entry.ski.ski
+    if samples <= 0 or not ski.has_posterior:
+        return None
+    route = {} if ski_model == "flexible" else {"profile_source": "beam"}
+
+    def answers(s: Any) -> dict[str, float]:
+        out, start = {}, None
+        for j, e in enumerate(moduli):
+            case = solve_case(s, mass=body_mass, load_position=load_position,
+                              snow_modulus=float(e), n_points=n_points, ski_model=ski_model,
+                              start=start, **route)  # fmt: skip
+            start = case.solution.pressure if ski_model == "rigid" else None
+            out[str(j)] = value(case.zones)
+        return out
+
+    est = {str(j): float(v) for j, v in enumerate(estimates)}
+    iv = sample_intervals(ski, answers, estimate=est, samples=samples, seed=seed)
+    return np.array([iv.interval(str(j)) for j in range(len(moduli))])
