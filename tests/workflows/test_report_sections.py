@@ -23,3 +23,18 @@ def test_stride_and_fleet_sections_show_the_computed_numbers() -> None:
     ranking = cmp.ranking("peak-pressure")
     assert f"{ranking[0]['full_total_peak_pressure_kpa']:.4g}" in page
     assert "lower is better" in page
+
+
+def test_fleet_section_shows_the_intervals_of_an_identified_ski() -> None:
+    import dataclasses
+
+    from _posterior import with_posterior
+    from skisnow.ski import get_ski
+
+    ident = dataclasses.replace(with_posterior(get_ski("classic")), name="identified")
+    cmp = compare_fleet([ident, "skate"], body_mass=75, snow_modulus=100e6, n_points=512,
+                        samples=12)  # fmt: skip
+    page = render_page("t", "s", [fleet_section(cmp, criterion="peak-pressure")])
+    row = next(r for r in cmp.ranking("peak-pressure") if r["ski"] == "identified")
+    assert f"{row['interval'][0]:.4g} – {row['interval'][1]:.4g}" in page
+    assert "no uncertainty recorded" in page  # the shipped skate

@@ -81,16 +81,23 @@ def fleet_section(comparison: Any, *, criterion: str = "mean-pressure") -> Secti
             rows.append([f"{tag} {label}", *[r[f"{load}_{key}"] for r in records]])
     crit = CRITERIA[criterion]
     ranking = comparison.ranking(criterion)
+
+    def interval(r: dict[str, Any]) -> str:
+        iv = r["interval"]
+        return "no uncertainty recorded" if iv is None else f"{iv[0]:.4g} – {iv[1]:.4g}"
+
     rank_table = Table(
-        ["rank", "ski", f"{crit.column} ({crit.better} is better)"],
-        [(r["rank"], r["ski"], r[crit.column]) for r in ranking],
+        ["rank", "ski", f"{crit.column} ({crit.better} is better)", "95 % interval"],
+        [(f"{r['rank']}=" if r["tied"] else r["rank"], r["ski"], r[crit.column], interval(r))
+         for r in ranking],
         floatfmt=".4g",
-    )
+    )  # fmt: skip
     notes = (
         f"Body mass {comparison.body_mass:g} kg, load at {comparison.load_position * 1e3:g} mm "
         "from the balance point "
         f"on {comparison.snow_modulus * 1e-6:g} MPa snow ({comparison.ski_model} ski). Ranking "
-        f"criterion: {crit.description}.",
+        f"criterion: {crit.description}. n= : a tie (equal values, or for identified skis "
+        "overlapping 95 % intervals: a tie within uncertainty).",
     )
     figure = Figure.of(
         plot_fleet(comparison),
