@@ -38,9 +38,10 @@ def _identify(capsys, args: list[str]) -> tuple[int, dict | None, str]:
 
 def test_noise_given_ten_times_too_small_is_named(capsys, tmp_path: Path) -> None:
     bench = _bench(capsys, tmp_path, "b10", 10.0)
-    code, doc, _ = _identify(capsys, ["identify", str(bench), "--out", str(tmp_path / "a.json"),
-                                      "--noise-mm", "0.0005", *_FAST])  # fmt: skip
-    assert code in (0, 3)
+    code, doc, err = _identify(capsys, ["identify", str(bench), "--out",
+                                        str(tmp_path / "a.json"), "--noise-mm", "0.0005",
+                                        *_FAST])  # fmt: skip
+    assert code in (0, 3), err
     assert "noise" in doc["causes"]
     words = " ".join(doc["warnings"])
     assert "noise misestimate" in words and "0.5 µm" in words

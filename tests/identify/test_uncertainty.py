@@ -149,6 +149,7 @@ _BASE = dict(
     [
         ({}, None, True, None),
         ({"mesh_rms": 2e-6}, "mesh", False, "--mesh-mm"),
+        ({"mesh_rms": np.inf}, "mesh", False, "could not be estimated"),
         ({"noise_given": 5e-7}, "noise", True, "noise misestimate"),
         ({"chi2": 2000.0, "misfit": 1.4, "lm_status": 0}, "evaluations", False, "--max-nfev"),
         ({"chi2": 2000.0, "misfit": 1.4}, "model", False, "local minimum"),

@@ -74,7 +74,14 @@ def diagnose(
     mesh_ok = mesh_rms <= noise / 5.0
     warnings: list[str] = []
     causes: list[str] = []
-    if not mesh_ok:
+    if not np.isfinite(mesh_rms):
+        causes.append("mesh")
+        warnings.append(
+            "model/mesh error: the beam's discretisation error could not be estimated (the "
+            "finer beam did not solve at the fitted ski: the fit is far from any ski the bench "
+            "could have measured); see the other causes"
+        )
+    elif not mesh_ok:
         causes.append("mesh")
         warnings.append(
             f"model/mesh error: the beam's discretisation error is {mesh_rms * 1e6:.2g} µm rms "

@@ -327,8 +327,9 @@ def identify_ski(
                 ("determined_ei_mm", span_e),
                 ("determined_z0_mm", span_z),
                 ("element_length_mm", merr.element_length * 1e3),
-                ("mesh_error_rms_um", round(merr.rms * 1e6, 4)),
-                ("mesh_error_max_um", round(merr.max * 1e6, 4)),
+                # null when it could not be estimated (a ski file holds finite numbers only)
+                ("mesh_error_rms_um", round(merr.rms * 1e6, 4) if np.isfinite(merr.rms) else None),
+                ("mesh_error_max_um", round(merr.max * 1e6, 4) if np.isfinite(merr.max) else None),
                 ("outliers", len(outliers)),
                 ("bands", "Laplace posterior, 95 % = 2 sd"),
                 ("seconds", round(seconds, 2)),
