@@ -37,7 +37,7 @@ SamplesOption = Annotated[
     typer.Option(
         "--samples",
         help="Posterior samples of an identified ski for the 95 % intervals of the answers "
-        f"(default {DEFAULT_SAMPLES}: Monte Carlo error of the ends ~5-8 % of the width; 0: "
+        f"(default {DEFAULT_SAMPLES}: Monte Carlo error of the ends ~7.5 % of the width; 0: "
         "no intervals). A ski without bands has none.",
     ),
 ]
@@ -53,9 +53,10 @@ UNIT_KEYS: dict[str, tuple[str, float]] = {
 
 WHY_ENOUGH = (
     "the ends of each interval are sample quantiles; their Monte Carlo standard error "
-    "(bootstrap) is given as a fraction of the interval's width: at the default 200 samples "
-    "about 5-8 % for a smooth answer (benchmarks/bench_interval_samples.py), small beside the "
-    "width itself; raise --samples to shrink it as 1/sqrt(samples)"
+    "(bootstrap) is given as a fraction of the interval's width; at the default 200 samples the "
+    "ends move by about 7.5 % (worst 10 %) of the width from seed to seed on an identified "
+    "classic (benchmarks/bench_interval_samples.py), small beside the width itself; raise "
+    "--samples to shrink it as 1/sqrt(samples)"
 )
 
 
