@@ -100,3 +100,23 @@ def test_profiles_computed_once_give_the_same_chunk(chunks) -> None:
     out = contact_chunk(spec, "classic", -0.12, 200e6, profiles)
     for name, want in chunks[("classic", 200e6)].items():
         np.testing.assert_array_equal(out[name], want, err_msg=name)
+
+
+@pytest.mark.parametrize("n_parts", [2, 3])
+def test_profiles_computed_in_parts_give_the_same_chunk(chunks, n_parts) -> None:
+    # On Dask the workers compute the beam profiles in one part of the masses each; the parts
+    # joined must be the whole (the same rows in the same order), and the chunk the same.
+    from skisnow.sweep._point import loaded_profiles, merge_profiles, split_profiles
+
+    spec = _spec()
+    assert split_profiles(spec)  # beam profiles: computed on the workers
+    whole = loaded_profiles(spec, "classic", -0.12)
+    parts = [loaded_profiles(spec, "classic", -0.12, part=(k, n_parts)) for k in range(n_parts)]
+    assert sum(len(p["height"]) for p in parts) == len(spec.masses)
+    merged = merge_profiles(parts)
+    np.testing.assert_array_equal(merged["x"], whole["x"])
+    np.testing.assert_array_equal(merged["height"], whole["height"])
+    out = contact_chunk(spec, "classic", -0.12, 200e6, parts)
+    for name, want in chunks[("classic", 200e6)].items():
+        np.testing.assert_array_equal(out[name], want, err_msg=name)
+    assert not split_profiles(_spec(profile_source="network"))  # JAX stays in the client

@@ -13,6 +13,7 @@ contact patch — the two views of the apparent contact's footprint
 from __future__ import annotations
 
 import functools
+import sys
 import warnings
 from dataclasses import dataclass
 from typing import Any
@@ -44,9 +45,11 @@ class Media:
 
 def _is_texture(base: Any) -> bool:
     from skisnow.materials import Material
-    from skisnow.multiscale import Base
 
-    if isinstance(base, Base | str):
+    # A Base exists only once skisnow.multiscale is imported: checking without importing it
+    # spares a plain case (and every sweep worker's first chunk) ~1 s of SciPy imports.
+    multiscale = sys.modules.get("skisnow.multiscale")
+    if isinstance(base, str) or (multiscale is not None and isinstance(base, multiscale.Base)):
         return True
     if base is None or isinstance(base, Material):
         return False

@@ -10,7 +10,8 @@ chunk: a map over loads legitimately has such corners. Any other error fails the
 retries it).
 
 Loaded profiles do not depend on the snow: :func:`loaded_profiles` computes those of all masses
-of one (ski, x_m) once, in the sweep's client (the camber network's JAX never runs on the Dask
+of one (ski, x_m) once, shared by its chunks: beam profiles on the Dask workers in one part per
+worker, network profiles in the sweep's client (the camber network's JAX never runs on the
 workers); beam profiles are cached per process by :mod:`skisnow.pipeline`.
 """
 
@@ -27,25 +28,51 @@ from skisnow.sweep._grid import SweepSpec
 _TO_FIELD = {"length": 1e3, "area": 1e4, "mean_pressure": 1e-3, "max_pressure": 1e-3}
 
 
-def loaded_profiles(spec: SweepSpec, ski_name: str, load_position: float) -> dict[str, np.ndarray]:
-    """The loaded profiles of every mass of ``spec`` at one (ski, x_m): ``{"x": (n_points,),
+def loaded_profiles(
+    spec: SweepSpec, ski_name: str, load_position: float, *, part: tuple[int, int] = (0, 1)
+) -> dict[str, np.ndarray]:
+    """The loaded profiles of the masses of ``spec`` at one (ski, x_m): ``{"x": (n_points,),
     "height": (n_mass, n_points)}`` [m], from :func:`skisnow.pipeline.loaded_profiles` (one
     batched network call; a load the beam cannot carry gives a row of NaN, recorded as a
-    non-converged point). Shared by all snow moduli of the (ski, x_m); the sweep computes it
-    once in the client and scatters it to the workers.
+    non-converged point). Shared by all snow moduli of the (ski, x_m).
+
+    ``part=(k, n)``: only the k-th of n consecutive slices of the masses (``np.array_split``);
+    :func:`merge_profiles` joins the parts. The sweep computes beam profiles in parts on its
+    workers (:func:`split_profiles`), network profiles whole in its client.
     """
     from skisnow import pipeline
 
     if spec.ski_model == "flexible":  # the flexible ski needs no loaded profile
         return {}
+    k, n = part
     x, heights = pipeline.loaded_profiles(
         spec.ski(ski_name),  # the definition the spec carries (a ski file's, or a shipped ski)
-        spec.masses,
+        np.array_split(np.asarray(spec.masses, dtype=float), n)[k],
         float(load_position),
         profile_source=spec.profile_source,
         n_points=spec.n_points,
     )
     return {"x": x, "height": heights}
+
+
+def split_profiles(spec: SweepSpec) -> bool:
+    """Whether a sweep on Dask computes the loaded profiles on its workers, in as many parts as
+    workers (beam profiles: the 126 beam solves of a Figure 8/9 map cost ~0.2 s, serial in the
+    client otherwise), or whole in the client (network profiles: one batched call, and JAX
+    never runs on the workers)."""
+    return spec.ski_model != "flexible" and spec.profile_source == "beam"
+
+
+def merge_profiles(
+    parts: dict[str, np.ndarray] | list[dict[str, np.ndarray]] | None,
+) -> dict[str, np.ndarray] | None:
+    """The profiles of all masses from :func:`loaded_profiles`'s parts (in order), or the
+    whole as given."""
+    if parts is None or isinstance(parts, dict):
+        return parts
+    if len(parts) == 1 or not parts[0]:
+        return parts[0]
+    return {"x": parts[0]["x"], "height": np.vstack([p["height"] for p in parts])}
 
 
 def solve_point(
@@ -109,13 +136,15 @@ def contact_chunk(
     ski_name: str,
     load_position: float,
     snow_modulus: float,
-    profiles: dict[str, np.ndarray] | None = None,
+    profiles: dict[str, np.ndarray] | list[dict[str, np.ndarray]] | None = None,
 ) -> dict[str, np.ndarray]:
     """The chunk function of real sweeps: every mass of ``spec`` at one (ski, x_m, E_counter).
 
-    ``profiles`` is :func:`loaded_profiles` of this (ski, x_m), if already computed. Returns the
-    variables of :data:`skisnow.sweep.VARIABLES` in their stored (field) units.
+    ``profiles`` is :func:`loaded_profiles` of this (ski, x_m), or the list of its parts, if
+    already computed. Returns the variables of :data:`skisnow.sweep.VARIABLES` in their stored
+    (field) units.
     """
+    profiles = merge_profiles(profiles)
     n_m, n_z = len(spec.masses), len(spec.zones)
     out: dict[str, np.ndarray] = {
         name: np.full((n_m, n_z), np.nan)

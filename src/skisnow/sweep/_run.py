@@ -70,6 +70,10 @@ def _chunk_task(
     return key, {name: np.asarray(v) for name, v in out.items()}
 
 
+def _flat(items: Any) -> list[Any]:
+    return [f for item in items for f in (item if isinstance(item, list) else [item])]
+
+
 def _function_name(fn: Callable[..., Any]) -> str:
     return f"{getattr(fn, '__module__', '?')}.{getattr(fn, '__qualname__', repr(fn))}"
 
@@ -144,6 +148,7 @@ PRELOAD = (
     "skisnow.contact._pk_kernel",  # numba and the compiled 1D loop (0.14 s a worker otherwise)
     "threadpoolctl",
     "skisnow.ski",
+    "skisnow.sweep._warm",  # one solve: the chunk's imports and the numba kernels' cache loaded
 )
 
 
@@ -226,14 +231,18 @@ def run_sweep(
             load position), passed to ``chunk_function`` as a fifth argument (scattered once to
             the Dask workers). The default physics uses it for the loaded profiles of all
             masses: the camber network (JAX) then runs once here and never on the workers,
-            which only solve contacts.
+            which only solve contacts; beam profiles are computed by the workers instead, in
+            one part of the masses per worker (:func:`skisnow.sweep._point.split_profiles`),
+            so that nothing serial precedes the chunks.
     """
+    split = False
     if chunk_function is None:
-        from skisnow.sweep._point import contact_chunk, loaded_profiles
+        from skisnow.sweep._point import contact_chunk, loaded_profiles, split_profiles
 
         chunk_function = contact_chunk
         if shared_function is None:
             shared_function = loaded_profiles
+            split = split_profiles(spec)
     if workers is not None and workers < 0:
         raise InputError(f"workers: need >= 0, got {workers}")
     if retries < 0:
@@ -243,7 +252,7 @@ def run_sweep(
         return _run_locked(
             spec, Path(path), chunk_function=chunk_function, scheduler=scheduler,
             workers=workers, client=client, retries=retries, on_progress=on_progress,
-            shared_function=shared_function,
+            shared_function=shared_function, split=split,
         )  # fmt: skip
 
 
@@ -258,6 +267,7 @@ def _run_locked(
     retries: int,
     on_progress: ProgressCallback | None,
     shared_function: Callable[[SweepSpec, str, float], Any] | None,
+    split: bool = False,
 ) -> SweepRun:
     t0 = time.perf_counter()
     done = prepare_store(path, spec, chunk_function)
@@ -314,17 +324,37 @@ def _run_locked(
                 own_client = Client(own_cluster)
             client = own_client
         n_workers = len(client.scheduler_info(n_workers=-1).get("workers", {}))
+        n_parts = max(n_workers, 1)  # shared data split in one part per worker
         t1 = time.perf_counter()
         futures = []
         shared_futures: dict[tuple[int, int], Any] = {}
-        for key in todo:  # ordered by (ski, position): submit as soon as its profiles exist
+        # ordered by (ski, position): submit as soon as its profiles exist; and run in this
+        # order (Dask's priority: the chunks of one (ski, position) become ready together and
+        # would run in any order): the softest snow first, the largest contacts and the
+        # longest chunks (2.7x the stiffest on the Figure 8/9 map), so that the short ones
+        # even out the workers' ends (longest processing time first).
+        for rank, key in enumerate(todo):
             shared = None
             if shared_function is not None:
                 if key[:2] not in shared_futures:
                     i, j = key[:2]
-                    data = shared_function(spec, spec.skis[i], spec.load_positions[j])
-                    # a list of one: a dict would be scattered item by item
-                    shared_futures[key[:2]] = client.scatter([data], hash=False)[0]
+                    args = (spec, spec.skis[i], spec.load_positions[j])
+                    if split:  # computed by the workers, one part each: nothing serial here
+                        shared_futures[key[:2]] = [
+                            client.submit(
+                                shared_function,
+                                *args,
+                                part=(p, n_parts),
+                                pure=False,
+                                key=f"skisnow-shared-{path.name}-{i}-{j}-{p}-{time.time_ns()}",
+                                retries=retries,
+                            )
+                            for p in range(n_parts)
+                        ]
+                    else:
+                        data = shared_function(*args)
+                        # a list of one: a dict would be scattered item by item
+                        shared_futures[key[:2]] = client.scatter([data], hash=False)[0]
                 shared = shared_futures[key[:2]]
             futures.append(
                 client.submit(
@@ -336,6 +366,7 @@ def _run_locked(
                     key=f"skisnow-chunk-{path.name}-{key[0]}-{key[1]}-{key[2]}-{time.time_ns()}",
                     retries=retries,
                     pure=False,
+                    priority=len(todo) - rank,
                 )
             )
         from distributed import as_completed
@@ -353,7 +384,7 @@ def _run_locked(
                     ) from exc
                 _record(key, values)
         finally:
-            for future in [*futures, *shared_futures.values()]:
+            for future in [*futures, *_flat(shared_futures.values())]:
                 future.cancel()
         end = time.perf_counter()
         return SweepRun(
