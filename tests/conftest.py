@@ -9,6 +9,47 @@ import pytest
 REPO = Path(__file__).resolve().parents[1]
 SHARED = REPO.parent / "shared"
 
+#: Prefix of the session's temporary root on a RAM file system (see pytest_configure).
+_RAM_ROOT = "skisnow-pytest-"
+
+
+def pytest_configure(config: pytest.Config) -> None:
+    """The session's temporary files (``tmp_path``) on the RAM file system ``/dev/shm``, where
+    the system has one (writable, at least 1 GiB free; the same rule as the explorer's store,
+    :func:`skisnow._atomic.scratch_directory`), unless ``--basetemp`` is given.
+
+    The tests write real stores, files and folders there and check the same things; only the
+    disk is faster: on this project's machines unlinking a file on disk took ~3.5 ms (a
+    removed 58-file Zarr skeleton 0.2 s, against 1-5 ms in RAM), and the kill-point test,
+    which creates and removes 101 stores, took 37 s against 18 s (load 10). One root per
+    session (``/dev/shm/skisnow-pytest-PID``, several engineers' suites may run at once),
+    removed at the end; roots of sessions that ended without removing theirs are removed
+    first."""
+    import os
+    import shutil
+
+    from skisnow._atomic import _alive, _ram_disk
+
+    if config.option.basetemp is not None or os.environ.get("SKISNOW_TEST_DISK_TMP"):
+        return
+    ram = _ram_disk()
+    if ram is None:
+        return
+    for entry in Path(ram).glob(f"{_RAM_ROOT}*"):
+        pid = entry.name[len(_RAM_ROOT) :]
+        if pid.isdigit() and not _alive(int(pid)):
+            shutil.rmtree(entry, ignore_errors=True)
+    config.option.basetemp = str(Path(ram) / f"{_RAM_ROOT}{os.getpid()}")
+    config._skisnow_ram_root = config.option.basetemp  # type: ignore[attr-defined]
+
+
+def pytest_unconfigure(config: pytest.Config) -> None:
+    import shutil
+
+    root = getattr(config, "_skisnow_ram_root", None)
+    if root is not None:
+        shutil.rmtree(root, ignore_errors=True)
+
 
 @pytest.fixture(scope="session")
 def shared_dir() -> Path:
