@@ -348,6 +348,7 @@ def _run_locked(
                                 pure=False,
                                 key=f"skisnow-shared-{path.name}-{i}-{j}-{p}-{time.time_ns()}",
                                 retries=retries,
+                                priority=len(todo) + 1,  # before any chunk: they wait on it
                             )
                             for p in range(n_parts)
                         ]
