@@ -274,14 +274,23 @@ def row_sweep() -> None:
     times = {}
     with tempfile.TemporaryDirectory() as tmp:
         for n in (1, 2):
+            t0 = time.perf_counter()
             cluster = local_cluster(n)
             client = Client(cluster)
+            start = time.perf_counter() - t0
+            # the workers' CPU during the run (load-independent: what each core must give on an
+            # idle machine) and the client's (its serial part: store, profiles if computed here)
+            w0, c0 = client.run(time.process_time), time.process_time()
             run = run_sweep(spec, Path(tmp) / f"w{n}.zarr", client=client)
+            w1, c1 = client.run(time.process_time), time.process_time()
             client.close()
             cluster.close()
             times[n] = run.compute_time
+            busy = sorted((w1[k] - w0[k] for k in w1), reverse=True)
             print(
-                f"    {n} worker(s): compute {run.compute_time:.2f} s, wall {run.wall_time:.2f} s"
+                f"    {n} worker(s): compute {run.compute_time:.2f} s, wall {run.wall_time:.2f} s "
+                f"(cluster start-up {start:.2f} s before); CPU of each worker "
+                f"{', '.join(f'{b:.2f}' for b in busy)} s, of the client {c1 - c0:.2f} s"
             )
         # the same sweep in this process: its CPU time is what the workers need between them
         c0 = time.process_time()
