@@ -38,6 +38,7 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 os.environ.setdefault("OMP_NUM_THREADS", "1")
 
 import argparse
+import json
 import time
 from concurrent.futures import ProcessPoolExecutor
 from pathlib import Path
@@ -138,22 +139,26 @@ def contact_error(ski, true) -> float:
 
 
 def run_one(args: tuple) -> dict:
-    name, plan, noise_um, cache, with_contact, dx_mm, n_stiffness = args
+    name, plan, noise_um, cache, with_contact, dx_mm, n_stiffness, criterion = args
     from skisnow.identify import identify_ski
 
+    kw: dict = {} if n_stiffness is None else {"n_stiffness": n_stiffness}
+    if criterion is not None:
+        kw["criterion"] = criterion
     true = true_ski(name)
     bench = bench_of(name, plan, noise_um, Path(cache), dx_mm)
     t0 = time.process_time()
     w0 = time.perf_counter()
     try:
-        res = identify_ski(bench, **({} if n_stiffness is None else {"n_stiffness": n_stiffness}))
+        res = identify_ski(bench, **kw)
     except Exception as exc:
         return {"ski": name, "plan": plan, "noise": noise_um, "error": repr(exc)[:120]}
     cpu, wall = time.process_time() - t0, time.perf_counter() - w0
     row = {"ski": name, "kind": true.kind, "plan": plan, "noise": noise_um, **errors(res, true),
            "misfit": res.misfit, "exit": 0 if res.converged else 3, "cpu": cpu, "wall": wall,
            "causes": ",".join(res.causes), "mesh_um": res.mesh_error[0] * 1e6,
-           "held_out": held_out(res.ski, true)}  # fmt: skip
+           "held_out": held_out(res.ski, true), "lam": res.regularisation,
+           "criterion": res.criterion}  # fmt: skip
     if with_contact:
         row["contact"] = contact_error(res.ski, true)
     return row
@@ -185,12 +190,17 @@ def main() -> None:
     ap.add_argument("--contact", action="store_true", help="also the contact comparison")
     ap.add_argument("--n-stiffness", type=int, default=None,
                     help="log-EI coefficients (default: identify_ski's)")  # fmt: skip
+    ap.add_argument(
+        "--out", default=None, help="append every row as a JSON line to this file as it finishes"
+    )
+    ap.add_argument("--criterion", default=None, choices=["evidence", "gcv"],
+                    help="how λ is chosen (default: identify_ski's)")  # fmt: skip
     ap.add_argument("--dx-mm", type=float, default=1.0,
                     help="grid of the reference bench [mm] (issue 25: 1 mm)")  # fmt: skip
     a = ap.parse_args()
     skis = [*map(str, VALIDATION_SEEDS), "issue25"] if a.validation else _skis(a.skis)
     jobs = [
-        (s, p, n, a.cache, a.contact, a.dx_mm, a.n_stiffness)
+        (s, p, n, a.cache, a.contact, a.dx_mm, a.n_stiffness, a.criterion)
         for s in skis
         for p in a.plans
         for n in a.noise_um
@@ -223,6 +233,9 @@ def main() -> None:
     with ProcessPoolExecutor(max_workers=max(1, a.jobs)) as pool:
         for row in pool.map(run_one, jobs):
             rows.append(row)
+            if a.out:
+                with open(a.out, "a") as fh:
+                    fh.write(json.dumps(row) + "\n")
             print(" | ".join(_fmt(row.get(c, row.get("error", ""))) for c in cols), flush=True)
     print(f"load average at end: {os.getloadavg()}")
     print("\ncoverage of the 95 % bands over determined stations (pooled over skis)")

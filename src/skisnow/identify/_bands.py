@@ -32,7 +32,7 @@ from skisnow.identify._lm import _LmResult
 from skisnow.identify._model import _design, _Problem
 from skisnow.ski import lower_hull_bracket
 
-__all__ = ["Posterior", "identified_profiles", "posterior"]
+__all__ = ["Posterior", "identified_profiles", "posterior", "smoothing_bias"]
 
 #: Posterior over prior standard deviation below which a station is determined by the bench.
 DETERMINED_RATIO = 0.5
@@ -67,6 +67,38 @@ def _gcv(sol: _LmResult, pen, lam: float):
     return lam, gcv, float(np.sqrt(rss / n)), edf, step
 
 
+def _evidence(sol: _LmResult, pen, lam: float):
+    """Minus the log evidence (marginal likelihood) of λ on the Gauss–Newton linearisation at
+    ``sol``, up to a constant: ``(λ, -log Z, misfit rms / σ, edf, step)`` like :func:`_gcv`.
+
+    Type-II maximum likelihood (empirical Bayes; MacKay 1992, eq. 2.19 of "Bayesian
+    interpolation"; Wahba 1985's generalised maximum likelihood): with σ-normalised residuals
+    r + J δ and the Gaussian prior of the penalty rows P p - t (precision PᵀP, proper: the
+    ridges on the level of log EI and on z0), the evidence of λ is
+
+        -2 log Z(λ) = |r + J δ̂|² + |P p̂ - t|² + log det(JᵀJ + PᵀP) - log det(PᵀP),
+
+    δ̂ the penalised step and p̂ = p + δ̂. Unlike GCV it weighs the prior's own scale against the
+    data (the Occam factor det(PᵀP)^1/2 / det(JᵀJ + PᵀP)^1/2), so that the chosen prior is one
+    the fitted ski is a typical draw of: the condition under which the Laplace bands cover the
+    truth at their nominal rate on average over the stations (Nychka 1988)."""
+    pen, target = pen if isinstance(pen, tuple) else (pen, np.zeros(pen.shape[0]))
+    j, r, p = sol.jac, sol.fun, sol.x
+    jtj = j.T @ j
+    ptp = pen.T @ pen
+    a = jtj + ptp
+    a_inv = np.linalg.pinv(a)
+    step = -a_inv @ (j.T @ r + ptp @ p - pen.T @ target)
+    rl = r + j @ step
+    rp = pen @ (p + step) - target
+    rss = float(rl @ rl)
+    edf = float(np.trace(a_inv @ jtj))
+    logdet_a = np.linalg.slogdet(a)[1]
+    logdet_p = np.linalg.slogdet(ptp)[1]
+    score = 0.5 * (rss + float(rp @ rp) + logdet_a - logdet_p)
+    return lam, float(score), float(np.sqrt(rss / r.size)), edf, step
+
+
 @dataclass(frozen=True, kw_only=True, eq=False)
 class Posterior:
     """The Laplace posterior of a fit: ``covariance`` of the parameters (σ-normalised data),
@@ -79,11 +111,20 @@ class Posterior:
     inflation: float
     dof: float
     bias: NDArray[np.float64]
+    #: the estimated smoothing bias (parameter shift to the undersmoothed fit), added to the
+    #: covariance as ``smoothing smoothingᵀ``; zero if not estimated
+    smoothing: NDArray[np.float64] | None = None
 
 
-def posterior(sol: _LmResult, model_error: NDArray[np.float64] | None = None) -> Posterior:
+def posterior(
+    sol: _LmResult,
+    model_error: NDArray[np.float64] | None = None,
+    smoothing: NDArray[np.float64] | None = None,
+) -> Posterior:
     """The Laplace posterior of the penalised fit ``sol`` (module docstring); ``model_error``
-    the σ-normalised residual change of a finer forward model (the discretisation error)."""
+    the σ-normalised residual change of a finer forward model (the discretisation error);
+    ``smoothing`` the estimated smoothing bias of the parameters (:func:`smoothing_bias`),
+    added as a rank-one term."""
     jtj = sol.jac.T @ sol.jac
     ptp = sol.pen.T @ sol.pen
     cov = np.linalg.pinv(jtj + ptp)
@@ -96,7 +137,32 @@ def posterior(sol: _LmResult, model_error: NDArray[np.float64] | None = None) ->
     if model_error is not None and model_error.size == n:
         bias = cov @ (sol.jac.T @ model_error)
     total = inflation * cov + np.outer(bias, bias)
-    return Posterior(covariance=total, prior=prior, inflation=inflation, dof=dof, bias=bias)
+    if smoothing is not None:
+        total = total + np.outer(smoothing, smoothing)
+    return Posterior(covariance=total, prior=prior, inflation=inflation, dof=dof, bias=bias,
+                     smoothing=smoothing)  # fmt: skip
+
+
+#: The undersmoothed fit whose difference from the chosen one estimates the smoothing bias:
+#: λ divided by this factor (:func:`smoothing_bias`).
+UNDERSMOOTHING = 100.0
+
+
+def smoothing_bias(sol: _LmResult, pen_under) -> NDArray[np.float64]:
+    """The smoothing bias of the fit ``sol`` estimated by the difference to an undersmoothed
+    fit: the penalised Gauss–Newton step from ``sol`` with the penalty rows ``pen_under`` (λ
+    divided by :data:`UNDERSMOOTHING`), a plug-in estimate of the bias of a penalised
+    estimator (Eubank & Speckman 1993; Hall 1992 on undersmoothing for intervals).
+
+    Why: the Laplace posterior contains the prior's variance, which is the size of the bias
+    only when the true ski is a typical draw of the smoothness prior; a ski's stiffness is
+    smooth with a few sharp steps (laminate ends, the binding plate), which a stationary
+    Gaussian prior at the λ chosen for the smooth majority calls improbable, and the bands
+    then miss the truth at and around the steps (measured, docs/validation/
+    identification-uncertainty.md). The step to the undersmoothed fit is noisy (its expected
+    square is the bias² plus the variance gained by undersmoothing), so the term errs on the
+    wide side."""
+    return _gcv(sol, pen_under, 0.0)[4]
 
 
 @dataclass(frozen=True, kw_only=True, eq=False)
@@ -158,8 +224,14 @@ def identified_profiles(
 
     sd_e, prior_e = sd(be, post.covariance), sd(be, post.prior)
     sd_zz, prior_z = sd(tz, post.covariance), sd(tz, post.prior)
-    det_e = (sd_e < DETERMINED_RATIO * prior_e) & (ex >= bent[0]) & (ex <= bent[1])
-    det_z = (sd_zz < DETERMINED_RATIO * prior_z) & (cx >= measured[0]) & (cx <= measured[1])
+    # what the data determine: the posterior without the smoothing-bias term (that term says
+    # how far the smoothing may have moved the fit, not how much the data know)
+    data_cov = post.covariance
+    if post.smoothing is not None:
+        data_cov = post.covariance - np.outer(post.smoothing, post.smoothing)
+    det_e = (sd(be, data_cov) < DETERMINED_RATIO * prior_e) & (ex >= bent[0]) & (ex <= bent[1])
+    det_z = (sd(tz, data_cov) < DETERMINED_RATIO * prior_z) & (cx >= measured[0])
+    det_z &= cx <= measured[1]
     sd_e = np.where(det_e, sd_e, np.maximum(sd_e, prior_e))
     # the prior's width where not determined, capped at the ski file's plausible camber band
     # (10 mm, skisnow._quantities 'camber_sd': a camber is 0-5 mm, so 10 mm says "unknown")

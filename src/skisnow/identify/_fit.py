@@ -99,7 +99,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from skisnow._errors import ConvergenceError, InputError
-from skisnow.identify._bands import _gcv
+from skisnow.identify._bands import _evidence, _gcv
 from skisnow.identify._homotopy import homotopy, polish, restart_bound
 from skisnow.identify._lm import (
     _DECREMENT_TOL,
@@ -156,6 +156,7 @@ def fit_bench(
     continuation: Sequence[float],
     say: Callable[[str], None],
     start_parameters: NDArray[np.float64] | None = None,
+    criterion: str = "gcv",
 ) -> BenchFit:
     """Fit the bench model to all load cases: start, continuation, GCV over ``lambdas`` (or the
     given ``regularisation``), the globalisation of a fit above the noise; options as in
@@ -163,6 +164,7 @@ def fit_bench(
     coarser fit carried to a refined z0 basis by
     :func:`~skisnow.identify._resolution.refined_parameters`) start the fit on
     the exact contact directly, like ``initial``."""
+    score = _evidence if criterion == "evidence" else _gcv
     # -- start: constant EI, z0 = the lightest profile (least squares on the z0 basis)
     if start_parameters is not None:
         z_start_x, z_start = nodes, np.zeros(nodes.size)  # unused: the start is given
@@ -230,7 +232,7 @@ def fit_bench(
         # the trace of its influence matrix; then one fit at the chosen λ from that step (or
         # from the fit itself if the step raises the misfit: the linearisation does not hold
         # that far).
-        records = [_gcv(sol, problem.penalty(v), v) for v in grid]
+        records = [score(sol, problem.penalty(v), v) for v in grid]
         best = int(np.argmin([rec[1] for rec in records]))
         lam = grid[best]
         if lam != lam_a:
@@ -271,7 +273,7 @@ def fit_bench(
             if last is not None and len(grid) > 1:
                 # λ by GCV on the smoothed path's last fit (its stone the exact one within
                 # the noise): the exact fit then starts at the λ it will most likely keep
-                lam_first = grid[int(np.argmin([_gcv(last, problem.penalty(v), v)[1]
+                lam_first = grid[int(np.argmin([score(last, problem.penalty(v), v)[1]
                                                 for v in grid]))]  # fmt: skip
     sol, lam, records, best = exact(p, lam_first)
     bound, dof = restart_bound(sol.jac, problem.penalty_matrix(lam))
@@ -289,7 +291,7 @@ def fit_bench(
         if trial[0].misfit_rms < sol.misfit_rms:
             sol, lam, records, best = trial
             bound, dof = restart_bound(sol.jac, problem.penalty_matrix(lam))
-    final = _gcv(sol, problem.penalty(lam), lam)
+    final = score(sol, problem.penalty(lam), lam)
     table = tuple(
         (rec[0], rec[1], rec[2], rec[3]) if k != best else final[:4]
         for k, rec in enumerate(records)

@@ -36,7 +36,7 @@ from typing import Any
 import numpy as np
 
 from skisnow._errors import ConvergenceError, InputError
-from skisnow.identify._bands import identified_profiles, posterior
+from skisnow.identify._bands import UNDERSMOOTHING, identified_profiles, posterior, smoothing_bias
 from skisnow.identify._cases import _bench_cases, load_cases
 from skisnow.identify._diagnosis import diagnose
 from skisnow.identify._fit import fit_bench
@@ -89,6 +89,8 @@ def identify_ski(
     max_nfev: int = 60,
     continuation: Sequence[float] = (1 / 3, 2 / 3),
     robust: bool = True,
+    criterion: str = "gcv",
+    smoothing_bands: bool = True,
     progress: Callable[[str], None] | None = None,
     source: str = "",
 ) -> IdentificationResult:
@@ -139,6 +141,17 @@ def identify_ski(
         Fractions of the bench's masses fitted first, in turn, when the start has no EI shape.
     robust
         Huber weights for bins beyond the noise's extreme (:mod:`skisnow.identify._robust`).
+    criterion
+        How λ is chosen over ``lambdas``: ``'gcv'`` (generalised cross-validation, Craven &
+        Wahba 1979) or ``'evidence'`` (the Laplace evidence, type-II maximum likelihood,
+        MacKay 1992); both on the Gauss–Newton linearisation. GCV is the default: on the
+        calibration skis of issue 25 the evidence chose λ 10-100 times larger and its bands
+        covered EI at 72 % of the determined stations against 93 % (docs/validation/
+        identification-uncertainty.md).
+    smoothing_bands
+        Add the estimated smoothing bias to the bands (:func:`~skisnow.identify._bands.
+        smoothing_bias`: the step to the fit at min(λ / 100, min(lambdas)), a rule calibrated
+        on seeded skis 1-4 and validated on others).
     progress
         Called with a short message after each stage.
     source
@@ -212,7 +225,7 @@ def identify_ski(
     problem = _Problem(cases, nodes, n_stiffness, n_camber, sigma_cases)
     options = dict(
         regularisation=regularisation, lambdas=lambdas, max_nfev=max_nfev,
-        continuation=continuation, say=say,
+        continuation=continuation, say=say, criterion=criterion,
     )  # fmt: skip
     try:
         fitted = fit_bench(problem, cases, nodes, initial=initial, **options)
@@ -239,7 +252,11 @@ def identify_ski(
     sol, lam = fitted.solution, fitted.regularisation
     # the discretisation error of the forward model at the fit, then the posterior with it
     merr = mesh_error(problem, sol.x, raw, boot_length=boot_length, bin_width=bin_width)
-    post = posterior(sol, merr.residual_change)
+    smooth_bias = None
+    if smoothing_bands and lam > 0:
+        lam_under = min(lam / UNDERSMOOTHING, min(float(v) for v in lambdas))
+        smooth_bias = smoothing_bias(sol, problem.penalty(lam_under))
+    post = posterior(sol, merr.residual_change, smooth_bias)
     contacts = np.concatenate([c for c in problem.contacts if c.size] or [np.zeros(1)])
     bent = (float(contacts.min()), float(contacts.max()))
     prof = identified_profiles(
@@ -315,7 +332,7 @@ def identify_ski(
             software=f"skisnow {_version()}",
             details=(
                 ("lambda", lam),
-                ("criterion", "given" if regularisation is not None else "gcv"),
+                ("criterion", "given" if regularisation is not None else criterion),
                 ("n_stiffness", n_stiffness),
                 ("n_camber", problem.n_z),
                 ("noise_mm", problem.sigma * 1e3),
@@ -339,7 +356,7 @@ def identify_ski(
     return IdentificationResult(
         ski=identified,
         regularisation=lam,
-        criterion="given" if regularisation is not None else "gcv",
+        criterion="given" if regularisation is not None else criterion,
         gcv=tuple(fitted.records),
         noise=problem.sigma,
         residual_rms=rms,
