@@ -83,9 +83,10 @@ def run(args: tuple) -> dict:
         bench = bench_of(name, "shop", noise_um, Path(cache))
     if variant == "truth":
         kw["initial"] = true
-    elif variant in ("gcv", "evidence", "gcv-nb", "evidence-nb"):
+    elif variant in ("gcv", "evidence", "gcv-nb", "evidence-nb", "gcv-nd"):
         kw["criterion"] = variant.split("-")[0]
         kw["smoothing_bands"] = not variant.endswith("-nb")
+        kw["discrepancy_bands"] = variant in ("gcv", "evidence")
     elif variant.startswith("lam"):
         kw["regularisation"] = float(variant[3:])
     elif variant.startswith("n") and variant[1:].isdigit():
