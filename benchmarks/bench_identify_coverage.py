@@ -139,12 +139,14 @@ def contact_error(ski, true) -> float:
 
 
 def run_one(args: tuple) -> dict:
-    name, plan, noise_um, cache, with_contact, dx_mm, n_stiffness, criterion = args
+    name, plan, noise_um, cache, with_contact, dx_mm, n_stiffness, criterion, plain = args
     from skisnow.identify import identify_ski
 
     kw: dict = {} if n_stiffness is None else {"n_stiffness": n_stiffness}
     if criterion is not None:
         kw["criterion"] = criterion
+    if plain:
+        kw["smoothing_bands"] = False
     true = true_ski(name)
     bench = bench_of(name, plan, noise_um, Path(cache), dx_mm)
     t0 = time.process_time()
@@ -193,6 +195,12 @@ def main() -> None:
     ap.add_argument(
         "--out", default=None, help="append every row as a JSON line to this file as it finishes"
     )
+    ap.add_argument(
+        "--no-smoothing-bands",
+        action="store_true",
+        help="bands without the estimated smoothing bias (the second pass of issue "
+        "25: the 'before' of the coverage tables)",
+    )
     ap.add_argument("--criterion", default=None, choices=["evidence", "gcv"],
                     help="how λ is chosen (default: identify_ski's)")  # fmt: skip
     ap.add_argument("--dx-mm", type=float, default=1.0,
@@ -200,7 +208,7 @@ def main() -> None:
     a = ap.parse_args()
     skis = [*map(str, VALIDATION_SEEDS), "issue25"] if a.validation else _skis(a.skis)
     jobs = [
-        (s, p, n, a.cache, a.contact, a.dx_mm, a.n_stiffness, a.criterion)
+        (s, p, n, a.cache, a.contact, a.dx_mm, a.n_stiffness, a.criterion, a.no_smoothing_bands)
         for s in skis
         for p in a.plans
         for n in a.noise_um

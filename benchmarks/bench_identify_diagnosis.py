@@ -15,6 +15,8 @@ separate the causes:
   from ``default``;
 * ``lamX``: λ fixed at X (smoothing weight: too strong → bias, too weak → variance);
 * ``nK``: K log-EI coefficients (resolution of the basis);
+* ``gcv`` / ``evidence``: λ by GCV / by the Laplace evidence, bands with the smoothing-bias term
+  (``gcv-nb`` / ``evidence-nb`` without it, ``gcv-disc`` with the model discrepancy too);
 * ``basis``: not a fit: the best least-squares approximation of the true log EI in the spline
   basis of 60 coefficients over the determined span (the floor a perfect fit could reach).
 
@@ -83,10 +85,11 @@ def run(args: tuple) -> dict:
         bench = bench_of(name, "shop", noise_um, Path(cache))
     if variant == "truth":
         kw["initial"] = true
-    elif variant in ("gcv", "evidence", "gcv-nb", "evidence-nb", "gcv-nd"):
+    elif variant in ("gcv", "evidence", "gcv-nb", "evidence-nb", "gcv-disc"):
+        # -nb: bands without the smoothing-bias term; -disc: with the model discrepancy
         kw["criterion"] = variant.split("-")[0]
         kw["smoothing_bands"] = not variant.endswith("-nb")
-        kw["discrepancy_bands"] = variant in ("gcv", "evidence")
+        kw["discrepancy_bands"] = variant.endswith("-disc")
     elif variant.startswith("lam"):
         kw["regularisation"] = float(variant[3:])
     elif variant.startswith("n") and variant[1:].isdigit():

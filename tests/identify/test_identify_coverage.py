@@ -36,26 +36,54 @@ def _coverage(res, true) -> tuple[float, float, int, int]:
     return cover_e, float(np.mean(np.abs(dd) <= 2 * sdz)), int(de.sum()), int(dz.sum())
 
 
+_COVERAGE: dict = {}
+
+
+def _pooled_coverage() -> tuple[float, float]:
+    """Two random plausible skis (seeds 7, 8: not among the seeds 1-4 on which the smoothing-
+    bias rule of the bands was chosen), shop plan (6 masses at 2 positions, stations every
+    10 mm), 10 µm noise, bench at 2 mm finite differences: the pooled shares of determined
+    stations inside the 95 % bands, EI and z0 (computed once for both tests)."""
+    if not _COVERAGE:
+        inside_e = inside_z = n_e = n_z = 0.0
+        for seed in (7, 8):
+            true = random_ski(seed)
+            bench = reference_bench(true, masses=(20, 40, 60, 80, 100, 120),
+                                    load_positions=(-0.04, -0.12), station_step=0.010,
+                                    noise=10e-6, seed=seed, dx=2e-3)  # fmt: skip
+            res = identify_ski(bench)
+            ce, cz, ne, nz = _coverage(res, true)
+            inside_e, inside_z = inside_e + ce * ne, inside_z + cz * nz
+            n_e, n_z = n_e + ne, n_z + nz
+        _COVERAGE["value"] = (inside_e / n_e, inside_z / n_z)
+    return _COVERAGE["value"]
+
+
 @pytest.mark.xfail(
-    reason="issue 25's target (90-98 % of determined stations inside the 95 % bands) is not "
-    "reached: benchmarks/bench_identify_coverage.py measures it (docs/validation/"
-    "identification-uncertainty.md has the tables)",
+    reason="issue 25's EI target (90-98 % of determined stations inside the 95 % bands) is not "
+    "reached on these two skis: 80.4 % measured (seed 7: 50/64, seed 8: 40/48; the smoothing-"
+    "bias term changes neither, λ = 0.01 chosen), while skis 5-24 on 1 mm benches pool 91.5 % "
+    "(5 µm) and 93.3 % (10 µm): docs/validation/identification-uncertainty.md",
     strict=False,
 )
-def test_bands_cover_the_truth_on_independent_benches() -> None:
-    # two random plausible skis, shop plan (6 masses at 2 positions, stations every 10 mm),
-    # 10 µm noise, bench at 2 mm finite differences: pooled coverage within 90-98 %
-    inside_e = inside_z = n_e = n_z = 0.0
-    for seed in (7, 8):
-        true = random_ski(seed)
-        bench = reference_bench(true, masses=(20, 40, 60, 80, 100, 120),
-                                load_positions=(-0.04, -0.12), station_step=0.010, noise=10e-6,
-                                seed=seed, dx=2e-3)  # fmt: skip
-        res = identify_ski(bench)
-        ce, cz, ne, nz = _coverage(res, true)
-        inside_e, inside_z, n_e, n_z = inside_e + ce * ne, inside_z + cz * nz, n_e + ne, n_z + nz
-    assert 0.90 <= inside_e / n_e <= 0.98
-    assert 0.90 <= inside_z / n_z <= 0.98
+def test_stiffness_bands_cover_the_truth_on_independent_benches() -> None:
+    # issue 25's target: 90-98 % of the determined stations inside the 95 % bands (with the
+    # estimated smoothing bias in the bands; before it 79-83 % on the shop plans)
+    cover_e, _ = _pooled_coverage()
+    assert 0.90 <= cover_e <= 0.98
+
+
+@pytest.mark.xfail(
+    reason="issue 25's z0 target (90-98 % of determined stations inside the 95 % bands) is not "
+    "reached: 55.2 % measured on these two skis (seed 7: 382/382, seed 8, a classic: 55/410); "
+    "skis 5-24 pool 63.7 % (5 µm) and 71.9 % (10 µm) on the shop plans: smooth z0 bowls of "
+    "20-125 µm traded against EI, which the shop plan barely determines (docs/validation/"
+    "identification-uncertainty.md)",
+    strict=False,
+)
+def test_camber_bands_cover_the_truth_on_independent_benches() -> None:
+    _, cover_z = _pooled_coverage()
+    assert 0.90 <= cover_z <= 0.98
 
 
 def test_a_ski_paired_with_its_own_four_mass_bench() -> None:

@@ -153,8 +153,8 @@ def identify_ski(
         Wahba 1979) or ``'evidence'`` (the Laplace evidence, type-II maximum likelihood,
         MacKay 1992); both on the Gauss–Newton linearisation. GCV is the default: on the
         calibration skis of issue 25 the evidence chose λ 10-100 times larger and its bands
-        covered EI at 72 % of the determined stations against 93 % (docs/validation/
-        identification-uncertainty.md).
+        covered EI at 72 % of the determined stations against GCV's 88 % (both with the
+        smoothing bias at λ / 100; docs/validation/identification-uncertainty.md).
     discrepancy_bands
         Add the covariance of a smooth model discrepancy (:func:`~skisnow.identify._bands.
         discrepancy_covariance`, Kennedy & O'Hagan 2001; 1 µm rms over 150 mm). Off by

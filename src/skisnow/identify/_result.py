@@ -25,9 +25,10 @@ class IdentificationResult:
         width where the bench does not determine them), which stations the bench determines
         (``stiffness_determined``/``camber_determined``), the posterior's modes, provenance.
     regularisation, criterion
-        The chosen λ and how (``'gcv'`` or ``'given'``).
+        The chosen λ and how (``'gcv'``, ``'evidence'`` or ``'given'``).
     gcv
-        ``((λ, GCV score, misfit rms / σ, effective degrees of freedom), ...)`` of the search.
+        ``((λ, score, misfit rms / σ, effective degrees of freedom), ...)`` of the search (score:
+        the GCV, or minus the log evidence with ``criterion="evidence"``; the lowest chosen).
     noise
         Bench noise σ [m] (pooled over the load cases; estimated from the scatter of the
         profiles about local cubics, or given).
