@@ -306,6 +306,7 @@ def identify_ski(
         kz_mm = md.get("kick_zone_mm")
         kz = None if kz_mm is None else (float(kz_mm[0]) * 1e-3, float(kz_mm[1]) * 1e-3)
     kind_ = kind or md.get("kind") or ("classic" if kz is not None else "skate")
+    bias_note = ", smoothing bias" if smooth_bias is not None else ""
     span_e = _span(prof.ex, prof.ei_determined)
     span_z = _span(prof.cx, prof.z_determined)
     identified = Ski(
@@ -330,7 +331,8 @@ def identify_ski(
             f"({len(masses)} masses {masses[0]:g}-{masses[-1]:g} kg at {len(positions)} "
             f"positions {positions[0]:g}..{positions[-1]:g} mm), stations "
             f"{xmin * 1e3:.0f}..{xmax * 1e3:.0f} mm. Bands: 95 % of the Laplace posterior "
-            f"(noise, prior, discretisation error); determined by the bench: EI {span_e}, "
+            f"(noise, prior, discretisation error{bias_note}); determined by the bench: "
+            f"EI {span_e}, "
             f"z0 {span_z} (elsewhere the prior's width)."
         ),
         provenance=Provenance(
@@ -345,6 +347,8 @@ def identify_ski(
                 "Wahba, G. (1983): Bayesian confidence intervals for the smoothing spline",
                 "Marquardt, D. W. (1963): the Levenberg-Marquardt method",
                 "Huber, P. J. (1964): robust estimation of a location parameter",
+                "Eubank, R. L., Speckman, P. L. (1993): confidence bands in nonparametric "
+                "regression (the smoothing bias in the bands)",
             ),
             created=time.strftime("%Y-%m-%dT%H:%M:%SZ", time.gmtime()),
             software=f"skisnow {_version()}",
@@ -366,7 +370,11 @@ def identify_ski(
                 ("mesh_error_rms_um", round(merr.rms * 1e6, 4) if np.isfinite(merr.rms) else None),
                 ("mesh_error_max_um", round(merr.max * 1e6, 4) if np.isfinite(merr.max) else None),
                 ("outliers", len(outliers)),
-                ("bands", "Laplace posterior, 95 % = 2 sd"),
+                (
+                    "bands",
+                    "Laplace posterior, 95 % = 2 sd"
+                    + (", with the estimated smoothing bias" if smooth_bias is not None else ""),
+                ),
                 ("seconds", round(seconds, 2)),
             ),
         ),
