@@ -9,6 +9,7 @@ from typing import Annotated, Any
 import typer
 
 from skisnow._errors import InputError
+from skisnow._names import printable
 from skisnow.pipeline import DEFAULT_SAMPLES, INTERVAL_ZONES
 
 GLIDE_NOTE = (
@@ -123,7 +124,7 @@ def print_intervals(iv: Any, title: str, *, zones=INTERVAL_ZONES) -> None:
             row.append(interval_text(iv.low[f"{zone}.{q}"] * f, iv.high[f"{zone}.{q}"] * f))
         rows.append(row)
     print_table(
-        f"{title}: {100 * iv.level:g} % intervals from {iv.samples} posterior samples",
+        f"{printable(title)}: {100 * iv.level:g} % intervals from {iv.samples} posterior samples",
         ["zone", "length [mm]", "area [cm²]", "mean p [kPa]", "max p [kPa]", "load share"],
         rows,
     )
@@ -161,11 +162,11 @@ def print_fleet_uncertainty(
         lo, hi = rec.get(f"{column}_low", float("nan")), rec.get(f"{column}_high", float("nan"))
         if lo == lo:
             console.print(
-                f"{rec['ski']}: {column} in {interval_text(lo, hi)} (95 %, {rec['samples']} "
-                "posterior samples)"
+                f"{printable(rec['ski'])}: {column} in {interval_text(lo, hi)} (95 %, "
+                f"{rec['samples']} posterior samples)"
             )
         else:
-            console.print(f"{rec['ski']}: {rec['uncertainty']}")
+            console.print(f"{printable(rec['ski'])}: {printable(rec['uncertainty'])}")
     if any(r["within_uncertainty"] for r in ranking):
         console.print("n= : a tie within uncertainty (the skis' 95 % intervals overlap)")
     elif any(r["tied"] for r in ranking):
@@ -201,11 +202,12 @@ def print_cycle_uncertainty(name: str, doc: dict[str, Any]) -> None:
     from skisnow.cli._render import console
 
     if not doc["recorded"]:
-        console.print(f"{name}: {doc['note']}")
+        console.print(f"{printable(name)}: {printable(doc['note'])}")
         return
     parts = [f"{k} {interval_text(*v)}" for k, v in doc["intervals"].items()]
     mc = 100 * doc["mc_error_of_ends_max_fraction_of_width"]
     console.print(
-        f"{name}: {100 * doc['level']:g} % intervals from {doc['samples']} posterior samples "
+        f"{printable(name)}: {100 * doc['level']:g} % intervals from {doc['samples']} posterior "
+        "samples "
         f"(Monte Carlo error of the ends ≤ {mc:.0f} % of the width): {'; '.join(parts)}"
     )
