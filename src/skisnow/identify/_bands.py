@@ -54,10 +54,10 @@ _EI_STEP, _Z0_STEP = 0.02, 0.005
 MAX_MODES = 40
 
 
-def _gcv(sol: _LmResult, pen, lam: float):
-    """GCV of the Gauss–Newton linearisation at ``sol`` with the penalty rows ``pen`` of λ
-    (or ``(rows, target)``): ``(λ, GCV, misfit rms / σ, edf, step)`` (Craven & Wahba 1979;
-    Wahba 1990, §4.3)."""
+def _penalised_step(sol: _LmResult, pen):
+    """The penalised Gauss–Newton step at ``sol`` with the penalty rows ``pen`` (or
+    ``(rows, target)``), shared by :func:`_gcv` and :func:`_evidence`:
+    ``(r, JᵀJ, PᵀP, A = JᵀJ + PᵀP, A⁺, δ̂, r + J δ̂, P (p + δ̂) - t)``."""
     pen, target = pen if isinstance(pen, tuple) else (pen, np.zeros(pen.shape[0]))
     j, r, p = sol.jac, sol.fun, sol.x
     jtj = j.T @ j
@@ -65,7 +65,14 @@ def _gcv(sol: _LmResult, pen, lam: float):
     a = jtj + ptp
     a_inv = np.linalg.pinv(a)
     step = -a_inv @ (j.T @ r + ptp @ p - pen.T @ target)
-    rl = r + j @ step
+    return r, jtj, ptp, a, a_inv, step, r + j @ step, pen @ (p + step) - target
+
+
+def _gcv(sol: _LmResult, pen, lam: float):
+    """GCV of the Gauss–Newton linearisation at ``sol`` with the penalty rows ``pen`` of λ
+    (or ``(rows, target)``): ``(λ, GCV, misfit rms / σ, edf, step)`` (Craven & Wahba 1979;
+    Wahba 1990, §4.3)."""
+    r, jtj, _, _, a_inv, step, rl, _ = _penalised_step(sol, pen)
     rss = float(rl @ rl)
     edf = float(np.trace(a_inv @ jtj))
     n = r.size
@@ -88,15 +95,7 @@ def _evidence(sol: _LmResult, pen, lam: float):
     data (the Occam factor det(PᵀP)^1/2 / det(JᵀJ + PᵀP)^1/2), so that the chosen prior is one
     the fitted ski is a typical draw of: the condition under which the Laplace bands cover the
     truth at their nominal rate on average over the stations (Nychka 1988)."""
-    pen, target = pen if isinstance(pen, tuple) else (pen, np.zeros(pen.shape[0]))
-    j, r, p = sol.jac, sol.fun, sol.x
-    jtj = j.T @ j
-    ptp = pen.T @ pen
-    a = jtj + ptp
-    a_inv = np.linalg.pinv(a)
-    step = -a_inv @ (j.T @ r + ptp @ p - pen.T @ target)
-    rl = r + j @ step
-    rp = pen @ (p + step) - target
+    r, jtj, ptp, a, a_inv, step, rl, rp = _penalised_step(sol, pen)
     rss = float(rl @ rl)
     edf = float(np.trace(a_inv @ jtj))
     logdet_a = np.linalg.slogdet(a)[1]
