@@ -44,9 +44,10 @@ _LAZY = {
         "skisnow.network._network",
     ),
     **dict.fromkeys(
-        ("TrainingProgress", "bench_sha256", "split_conditions", "train_network"),
+        ("TrainingProgress", "train_network"),
         "skisnow.network._training",
     ),
+    **dict.fromkeys(("bench_sha256", "split_conditions"), "skisnow.network._bench_split"),
 }
 
 __getattr__ = lazy_getattr(__name__, _LAZY)

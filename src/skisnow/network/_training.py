@@ -19,9 +19,7 @@ Residuals near contact (bench height below ``contact_height``) can be weighted u
 
 from __future__ import annotations
 
-import contextlib
 import dataclasses
-import hashlib
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
@@ -31,7 +29,8 @@ import numpy as np
 import pandas as pd
 
 from skisnow._errors import ConvergenceError, InputError, SolverStatus
-from skisnow.bench import BENCH_COLUMNS, BenchData
+from skisnow.bench import BenchData
+from skisnow.network._bench_split import _bench_table, bench_sha256, split_conditions
 from skisnow.network._jax import jax, jnp, optax, ravel_pytree
 from skisnow.network._levenberg_marquardt import make_lm_step
 from skisnow.network._network import (
@@ -44,7 +43,7 @@ from skisnow.network._network import (
     x64,
 )
 
-__all__ = ["TrainingProgress", "bench_sha256", "split_conditions", "train_network"]
+__all__ = ["TrainingProgress", "train_network"]
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -64,73 +63,6 @@ class TrainingProgress:
     train_rms_um: float
     val_mean_um: float
     val_max_um: float
-
-
-def _bench_table(bench: BenchData | pd.DataFrame) -> pd.DataFrame:
-    """The validated table of one ski: :class:`~skisnow.bench.BenchData`'s validation (the one
-    definition of a valid bench table) plus the training's own rule, one ski per network."""
-    if isinstance(bench, pd.DataFrame):
-        bench = BenchData(bench)  # validates (FileFormatError naming the row and column)
-    elif not isinstance(bench, BenchData):
-        raise InputError(
-            "bench must be a skisnow.bench.BenchData or a pandas DataFrame, "
-            f"got {type(bench).__name__}"
-        )
-    if len(bench.skis) != 1:
-        raise InputError(
-            "bench table must hold one ski (a network is trained per ski), "
-            f"found {list(bench.skis)}"
-        )
-    return bench.table
-
-
-def bench_sha256(bench: BenchData | pd.DataFrame) -> str:
-    """sha256 of the bench data's content (ski name + rows sorted, float64), order-independent.
-
-    A DataFrame is put in bench order (by mass, position, x) before it is validated, so that
-    the same samples in any row order give the same hash.
-    """
-    if isinstance(bench, pd.DataFrame) and set(BENCH_COLUMNS) <= set(bench.columns):
-        # mixed types in a column cannot be sorted: the validation below names the bad value
-        with contextlib.suppress(TypeError):
-            bench = bench.sort_values(list(BENCH_COLUMNS[1:]), kind="stable")
-    table = _bench_table(bench)
-    cols = list(BENCH_COLUMNS[1:])
-    values = table[cols].to_numpy(dtype=np.float64)
-    order = np.lexsort(values.T[::-1])
-    h = hashlib.sha256(str(table["ski"].iloc[0]).encode())
-    h.update(np.ascontiguousarray(values[order]).astype("<f8").tobytes())
-    return h.hexdigest()
-
-
-def split_conditions(
-    masses: np.ndarray, positions: np.ndarray, *, validation_fraction: float, seed: int
-) -> np.ndarray:
-    """Boolean mask over load conditions: True = held out for validation.
-
-    Conditions are drawn (seeded) among the interior ones -- not at the extreme mass or
-    position of the bench -- so that validation measures interpolation, the network's job, and
-    the trained domain stays the bench's domain. At least one condition is held out.
-    """
-    n = len(masses)
-    interior = (
-        (masses > masses.min())
-        & (masses < masses.max())
-        & (positions > positions.min())
-        & (positions < positions.max())
-    )
-    candidates = np.flatnonzero(interior)
-    if candidates.size == 0:
-        candidates = np.arange(n)
-    n_val = max(1, round(validation_fraction * n))
-    n_val = min(n_val, candidates.size, n - 2)
-    if n_val < 1:
-        raise InputError(f"bench has {n} load conditions; at least 3 are needed to train")
-    rng = np.random.default_rng(seed)
-    chosen = rng.choice(candidates, size=n_val, replace=False)
-    mask = np.zeros(n, dtype=bool)
-    mask[chosen] = True
-    return mask
 
 
 def _loss_weights(height: np.ndarray, contact_height: float, contact_weight: float) -> np.ndarray:
@@ -153,6 +85,7 @@ def train_network(
     contact_weight: float = 4.0,
     reference_profile: bool = True,
     ensemble: int = 1,
+    time_limit: float | None = None,
     progress: Callable[[TrainingProgress], None] | None = None,
     report_every: int = 50,
     raise_on_failure: bool = False,
@@ -192,6 +125,10 @@ def train_network(
     ensemble
         Number of members (different initial weights); the spread of their predictions is
         reported by :meth:`CamberNetwork.predict_with_spread`.
+    time_limit
+        Wall-clock budget [s] of each member's Levenberg–Marquardt phase (``None``: none). A
+        phase cut by it ends like one cut by ``lm_steps``: status ``MAX_STEPS_REACHED``, its
+        best held-out parameters kept, the reason in ``metadata["stopped_by"]``.
     progress
         Called with a :class:`TrainingProgress` every ``report_every`` Adam steps and
         every LM step.
@@ -204,7 +141,9 @@ def train_network(
     CamberNetwork
         Its ``metadata`` holds the ski, the bench sha256, the seed, the held-out conditions,
         the held-out errors in µm (mean, p95, max, mean where h < 0.2 mm), the training time in
-        seconds, and the training ``status`` (see :attr:`CamberNetwork.status`):
+        seconds, the bench plan (its masses and positions), why each member's LM phase stopped
+        (``stopped_by``: ``patience``, ``no_decrease``, ``step_limit``, ``time_limit``,
+        ``nonfinite``), and the training ``status`` (see :attr:`CamberNetwork.status`):
         ``SUCCESSFUL`` when every member stopped on a criterion (early stopping on the held-out
         conditions, or Levenberg–Marquardt finding no step that lowers the error, MATLAB's
         "maximum mu reached"), ``MAX_STEPS_REACHED`` when a member used its whole step budget
@@ -234,6 +173,8 @@ def train_network(
         raise InputError(f"ensemble must be >= 1, got {ensemble}")
     if adam_steps < 0 or lm_steps < 0:
         raise InputError("adam_steps and lm_steps must be >= 0")
+    if time_limit is not None and not time_limit > 0:
+        raise InputError(f"time_limit must be > 0 seconds (or None), got {time_limit}")
 
     x = table["x_mm"].to_numpy(float) * 1e-3
     m = table["mass_kg"].to_numpy(float)
@@ -297,6 +238,7 @@ def train_network(
                 adam_learning_rate=adam_learning_rate,
                 lm_steps=lm_steps,
                 patience=patience,
+                time_limit=time_limit,
                 progress=progress,
                 report_every=report_every,
                 member_index=k,
@@ -332,6 +274,8 @@ def train_network(
         "seed": int(seed),
         "n_conditions": len(conds),
         "n_points": len(table),
+        "bench_masses_kg": [float(v) for v in np.unique(conds[:, 0])],
+        "bench_positions_mm": [float(1e3 * v) for v in np.unique(conds[:, 1])],
         "validation_conditions": [
             {"mass_kg": float(cm), "load_position_mm": float(1e3 * cp)}
             for cm, cp in conds[val_cond]
@@ -348,8 +292,12 @@ def train_network(
             "contact_weight": contact_weight,
             "validation_fraction": validation_fraction,
             "reference_profile": reference_profile,
+            "time_limit_s": time_limit,
+            "architecture": list(arch.widths),
+            "ensemble": ensemble,
         },
         "lm_steps_taken": [h_["lm_steps"] for h_ in histories],
+        "stopped_by": [h_["stopped_by"] for h_ in histories],
         "status": _worst([h_["status"] for h_ in histories]).value,
         "member_status": [h_["status"].value for h_ in histories],
         "training_time_s": time.perf_counter() - t0,
@@ -382,6 +330,7 @@ def _train_member(
     adam_learning_rate: float,
     lm_steps: int,
     patience: int,
+    time_limit: float | None,
     progress: Callable[[TrainingProgress], None] | None,
     report_every: int,
     member_index: int,
@@ -390,7 +339,7 @@ def _train_member(
     """Train one member: Adam, then Levenberg–Marquardt with early stopping.
 
     Returns the member (the parameters with the lowest held-out error in the LM phase) and a
-    history ``{"lm_steps": steps taken, "status": SolverStatus}``.
+    history ``{"lm_steps": steps taken, "status": SolverStatus, "stopped_by": reason}``.
     """
     model = BlockNetwork(arch, key=key)
     theta0, unravel = ravel_pytree(model)
@@ -450,7 +399,11 @@ def _train_member(
         while done < adam_steps:
             new_theta, opt_state, value = adam_chunk(theta, opt_state)
             if not (np.isfinite(float(value)) and bool(jnp.all(jnp.isfinite(new_theta)))):
-                return unravel(theta), {"lm_steps": 0, "status": SolverStatus.NONFINITE}
+                return unravel(theta), {
+                    "lm_steps": 0,
+                    "status": SolverStatus.NONFINITE,
+                    "stopped_by": "nonfinite",
+                }
             theta = new_theta
             done += report_every
             report("adam", min(done, adam_steps), adam_steps, hscale * 1e6 * np.sqrt(value), theta)
@@ -459,7 +412,9 @@ def _train_member(
     lm_taken = 0
     # without LM, Adam ran its fixed budget: no stopping criterion was met
     status = SolverStatus.MAX_STEPS_REACHED
+    stopped_by = "step_limit"
     if lm_steps > 0:
+        t_lm = time.perf_counter()
 
         def point_residual(th: jax.Array, *point: jax.Array) -> jax.Array:
             return residual(th, tuple(v[None] for v in point))[0]
@@ -473,7 +428,7 @@ def _train_member(
             lm_taken = step
             vm = float(val_errors(theta)[0])
             if not (np.isfinite(vm) and np.isfinite(float(rms))):
-                status = SolverStatus.NONFINITE
+                status, stopped_by = SolverStatus.NONFINITE, "nonfinite"
                 break
             if vm < best_val:
                 best_val, best_theta, since = vm, theta, 0
@@ -484,6 +439,10 @@ def _train_member(
                 # no step lowers the error (mu at its maximum) or early stopping on the
                 # held-out conditions: a stopping criterion of MATLAB's trainlm was met
                 status = SolverStatus.SUCCESSFUL
+                stopped_by = "no_decrease" if not bool(accepted) else "patience"
+                break
+            if time_limit is not None and time.perf_counter() - t_lm > time_limit:
+                stopped_by = "time_limit"  # a budget, like lm_steps: MAX_STEPS_REACHED
                 break
         theta = best_theta
-    return unravel(theta), {"lm_steps": lm_taken, "status": status}
+    return unravel(theta), {"lm_steps": lm_taken, "status": status, "stopped_by": stopped_by}
