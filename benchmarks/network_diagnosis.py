@@ -20,16 +20,23 @@ import time
 from pathlib import Path
 
 import numpy as np
-from bench_network import TEST_MASSES, TEST_POSITIONS, bench_cube, interpolate_bench
+from bench_network import (
+    TEST_MASSES,
+    TEST_POSITIONS,
+    TRAINING_MASSES,
+    TRAINING_POSITIONS,
+    bench_cube,
+    interpolate_bench,
+)
 
 from skisnow.bench import DEFAULT_LOAD_POSITIONS, DEFAULT_MASSES, run_bench
 from skisnow.ski import get_ski, solve_beam
 
 BENCHES = {
     "paper": (DEFAULT_MASSES, DEFAULT_LOAD_POSITIONS),
-    "dense": (tuple(float(m) for m in range(5, 131)), tuple(-np.linspace(0.04, 0.24, 16))),
+    "dense": (TRAINING_MASSES, TRAINING_POSITIONS),
     "m1p40": (tuple(float(m) for m in range(5, 131)), DEFAULT_LOAD_POSITIONS),
-    "m5p13": (DEFAULT_MASSES, tuple(-np.linspace(0.04, 0.24, 16))),
+    "m5p13": (DEFAULT_MASSES, TRAINING_POSITIONS),
 }
 
 
@@ -60,6 +67,12 @@ def main() -> None:
     ap.add_argument("--validation-fraction", type=float, default=0.15)
     ap.add_argument("--no-reference", action="store_true")
     ap.add_argument("--interp-only", action="store_true")
+    ap.add_argument(
+        "--shipped-fit",
+        action="store_true",
+        help="no training: the shipped network's error on its own training bench (the fit) "
+        "and on the 25 off-grid cases",
+    )
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--log", default=str(Path(__file__).with_name("network_diagnosis.jsonl")))
     args = ap.parse_args()
@@ -87,7 +100,20 @@ def main() -> None:
         "n_conditions": len(masses) * len(positions),
         "interpolation": split_errors(interp, truth),
     }
-    if not args.interp_only:
+    if args.shipped_fit:
+        from skisnow.network import bench_sha256, shipped_network
+
+        net = shipped_network(args.ski)
+        if net.metadata["n_conditions"] != len(masses) * len(positions):
+            raise SystemExit(f"{args.ski}: the shipped network was not trained on --bench")
+        record["same_hash"] = bench_sha256(bench) == net.metadata["training_data_sha256"]
+        _, _, _, hb = cube
+        ms, ps = np.meshgrid(cube[0], cube[1])  # (n_pos, n_mass) as the cube
+        fit = net.predict(x, ms.ravel(), ps.ravel(), on_domain_error="ignore")
+        hb = hb.reshape(-1, x.size)
+        record["shipped_fit"] = split_errors(fit, hb)
+        record["network"] = split_errors(net.predict(x, mm, pp), truth)
+    elif not args.interp_only:
         from skisnow.network import train_network
 
         curve = []

@@ -150,6 +150,29 @@ def test_training_status_says_how_it_stopped(small_network, small_training_kwarg
     ]
     assert [SolverStatus(s) for s in md["member_status"]] == expected
     assert small_network.status is expected[0]
+    # the reason is recorded, and agrees with the status
+    for reason, status in zip(md["stopped_by"], expected, strict=True):
+        assert reason in (("patience", "no_decrease") if status.successful else ("step_limit",))
+    # the bench plan is recorded: the grid the network was trained on
+    assert md["bench_masses_kg"] == sorted(md["bench_masses_kg"])
+    assert len(md["bench_masses_kg"]) * len(md["bench_positions_mm"]) == md["n_conditions"]
+
+
+def test_a_wall_clock_budget_ends_lm_like_a_step_budget(small_bench):
+    """A time limit is a budget, not a convergence: the LM phase it cuts (here after its first
+    step) ends MAX_STEPS_REACHED with the reason 'time_limit', and the parameters kept are the
+    best held-out ones -- those of the one step taken, or the Adam result before it."""
+    from skisnow import SolverStatus
+    from skisnow.network import train_network
+
+    kw = {"architecture": "2,3,3,3,2,2", "adam_steps": 50, "lm_steps": 50, "report_every": 50}
+    net = train_network(small_bench, seed=5, time_limit=1e-9, **kw)
+    md = net.metadata
+    assert md["lm_steps_taken"] == [1] and md["stopped_by"] == ["time_limit"]
+    assert net.status is SolverStatus.MAX_STEPS_REACHED
+    assert md["options"]["time_limit_s"] == 1e-9
+    with pytest.raises(InputError, match="time_limit"):
+        train_network(small_bench, time_limit=0.0, **kw)
 
 
 def test_adam_alone_reports_its_budget_and_raises_on_request(small_bench):
