@@ -53,6 +53,14 @@ SKI_SETTINGS = {
         "patience": 50,
         "time_limit": 3000.0,
     },
+    "classic-k22": {
+        "architecture": "8,24,24,24,16,16",
+        "adam_steps": 1500,
+        "lm_steps": 2000,
+        "lm_points": 12000,
+        "patience": 50,
+        "time_limit": 1150.0,
+    },
 }
 #: The training bench of the shipped networks (issue 30): 5-130 kg in 1 kg steps × 16 load
 #: positions 40-240 mm behind the balance point (13.3 mm apart), a virtual bench denser than the
