@@ -341,8 +341,16 @@ def network_from_files(
     # ski sits lower under the load at the heaviest trained mass than at the lightest, and its
     # profile moves with every step of the load across the trained range (a re-scaled input
     # saturates the network: one profile for 5, 30 and 55 kg). A model whose training record
-    # says it converged is held to it (the shipped ones, anything `skisnow train` finished)
-    if net.status is None or not net.status.successful:
+    # says it converged is held to it (anything `skisnow train` finished), and so is one that
+    # ran out of its budget after a full-size Levenberg–Marquardt phase (>= 100 steps: the
+    # shipped networks, trained to a step or wall-clock budget)
+    steps = net.metadata.get("lm_steps_taken") or [0]
+    full_budget = (
+        net.status is SolverStatus.MAX_STEPS_REACHED
+        and isinstance(steps, list)
+        and all(isinstance(k, int) and k >= 100 for k in steps)
+    )
+    if net.status is None or not (net.status.successful or full_budget):
         return net  # no record of a finished training (a toy, a stopped run): not held to it
     p = 0.5 * (domain.position_min + domain.position_max)
     masses = np.linspace(domain.mass_min, domain.mass_max, 6)
