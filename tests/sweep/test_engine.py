@@ -212,3 +212,41 @@ def test_dask_retries_a_failing_chunk(tmp_path: Path) -> None:
     assert sorted(n for k, n in sizes.items() if k.endswith("_100000000.0")) == [2] * 6
     a, b = open_sweep(tmp_path / "s.zarr"), open_sweep(tmp_path / "ref.zarr")
     xr.testing.assert_equal(a, b)  # attrs differ only in the chunk function's name
+
+
+def test_profile_only_variables_hold_the_last_chunk_written(tmp_path: Path) -> None:
+    # The Breitschädel variables have no snow dimension: every chunk of a (ski, position)
+    # carries them. A writer skips the files it has already written with the same values (the
+    # earlier write ended before that chunk's marker), and writes values that differ: the store
+    # ends as if every chunk had written them, whatever the order the chunks arrive in.
+    from skisnow.sweep._run import prepare_store
+    from skisnow.sweep._store import ChunkWriter
+
+    spec = _spec()
+    path = tmp_path / "p.zarr"
+    prepare_store(path, spec, hertz_chunk)
+    group = zarr.open_group(str(path), mode="r")
+    writer = ChunkWriter(path, spec)
+    first = hertz_chunk(spec, "classic", -0.21, 20e6)
+    writer.write((0, 0, 0), first)
+    stored = group["breitschaedel_area_cm2"][0, :, 0, :]
+    np.testing.assert_array_equal(stored, first["breitschaedel_area_cm2"])
+    changed = dict(first, breitschaedel_area_cm2=first["breitschaedel_area_cm2"] * 2)
+    writer.write((0, 0, 1), changed)  # differs: written
+    np.testing.assert_array_equal(
+        group["breitschaedel_area_cm2"][0, :, 0, :], changed["breitschaedel_area_cm2"]
+    )
+    writer.write((0, 0, 2), first)  # differs from the last written again: written
+    np.testing.assert_array_equal(group["breitschaedel_area_cm2"][0, :, 0, :], stored)
+    # unchanged values are not rewritten: a file spoiled behind the writer's back stays so
+    zarr.open_group(str(path), mode="r+")["breitschaedel_length_mm"][0, :, 0, :] = -1.0
+    writer.write((0, 0, 1), first)
+    assert (group["breitschaedel_length_mm"][0, :, 0, :] == -1.0).all()
+    # a new writer (a resumed sweep) writes them again with its first chunk
+    ChunkWriter(path, spec).write((0, 0, 1), first)
+    np.testing.assert_array_equal(
+        group["breitschaedel_length_mm"][0, :, 0, :], first["breitschaedel_length_mm"]
+    )
+    # the other (ski, position)s are untouched (still the fill value)
+    assert np.isnan(group["breitschaedel_length_mm"][1, :, 0, :]).all()
+    assert np.isnan(group["breitschaedel_length_mm"][0, :, 1, :]).all()

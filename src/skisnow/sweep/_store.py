@@ -381,6 +381,11 @@ def done_chunks(path: Path, spec: SweepSpec) -> set[tuple[int, int, int]]:
     return {key for key in spec.chunks() if flags[key] == 1}
 
 
+def _same(a: np.ndarray, b: np.ndarray) -> bool:
+    """Whether two arrays hold the same values (NaN equal to NaN)."""
+    return bool(np.array_equal(a, b, equal_nan=a.dtype.kind in "fc"))
+
+
 class ChunkWriter:
     """Writes chunks into an existing store: each chunk's data, THEN its completion marker.
 
@@ -400,6 +405,8 @@ class ChunkWriter:
         self._shapes = chunk_shapes(spec)
         self._arrays = {name: group[name] for name in self._variables}
         self._marker = group["chunk_done"]
+        # profile-only variables this writer has written completely, by (ski, position)
+        self._profiles_written: dict[tuple[int, int], dict[str, np.ndarray]] = {}
 
     def write(self, key: tuple[int, int, int], values: Mapping[str, np.ndarray]) -> None:
         """Write the chunk ``key`` = (ski, position, modulus) indices from a chunk function's
@@ -420,14 +427,23 @@ class ChunkWriter:
             data[name] = arr
         where = {"ski": i, "load_position_mm": j, "snow_modulus_mpa": k}
         # The profile-only variables (no snow_modulus_mpa dim) are the same for every modulus
-        # of this (ski, position): rewriting them from each chunk is idempotent and keeps every
-        # chunk self-contained (zarr's LocalStore replaces each chunk file atomically, so a kill
-        # never leaves a torn file).
+        # of this (ski, position): each chunk writes them (idempotent; zarr's LocalStore
+        # replaces each chunk file atomically, so a kill never leaves a torn file), except
+        # where this writer has already written the very same values for an earlier chunk of
+        # the (ski, position): that write ended before the earlier chunk's marker, so every
+        # chunk with a marker has them on disk (2 of the 11 files of a Figure 8/9 chunk).
+        written = self._profiles_written.get((i, j), {})
         writes = [
             (self._arrays[name], tuple(where.get(d, slice(None)) for d in var.dims), data[name])
             for name, var in self._variables.items()
+            if "snow_modulus_mpa" in var.dims
+            or not (name in written and _same(written[name], data[name]))
         ]
         write_all(writes)
+        self._profiles_written[(i, j)] = {
+            name: data[name] for name, var in self._variables.items()
+            if "snow_modulus_mpa" not in var.dims
+        }  # fmt: skip
         self._marker[i, j, k] = 1  # only once every variable is written
 
 

@@ -1,0 +1,240 @@
+"""Where the Figure 8/9 sweep's time goes: CPU by phase in the client and in each worker.
+
+    uv run python benchmarks/sweep_phases.py             # 1 and 2 workers, one run each
+    uv run python benchmarks/sweep_phases.py --runs 3    # three runs each
+
+The sweep of ``bench_speed.py --rows sweep`` (skate, 126 masses × 20 moduli, beam profiles, 4096
+stations) on a local cluster of 1 and 2 worker processes. Timers are installed on the workers with
+``client.run`` (the task functions are pickled by reference, so a worker runs the timed wrapper),
+and in the client around the store's creation and each chunk's write. Printed per run:
+
+* each worker: process CPU during the run, and within it the CPU of each task kind (profile
+  parts, chunks; the chunks' longest and shortest), the rest being the worker's own event loop
+  (receiving tasks, sending results, heartbeats) and its idle tail (wall);
+* the client process: CPU by thread (main thread: submission, gathering, writes; the event-loop
+  thread: the scheduler and the client's communication; Zarr's I/O thread), and the writes;
+* the nannies' CPU (the processes that watch the workers);
+* the compute time and, per worker, when it finished its last task (its idle tail).
+
+Every CPU figure is load-independent to first order; wall times are printed with the load.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import statistics
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+import psutil
+
+
+def load() -> str:
+    return " ".join(f"{v:.2f}" for v in os.getloadavg())
+
+
+def spec():
+    from skisnow.sweep import SweepSpec
+
+    return SweepSpec(
+        skis=("skate",),
+        masses=np.arange(5.0, 131.0, 1.0),
+        load_positions=(-0.120,),
+        snow_moduli=np.arange(20.0, 401.0, 20.0) * 1e6,
+        model="strip",
+        profile_source="beam",
+        n_points=4096,
+    )
+
+
+def _install_worker_timers() -> None:
+    """Runs on each worker: wrap the task functions with CPU/wall timers."""
+    import time as _t
+
+    import skisnow.sweep._point as point
+    import skisnow.sweep._run as run
+
+    log = []
+
+    def timed(kind, fn):
+        if getattr(fn, "_timed", False):
+            return fn
+
+        def wrapper(*a, **k):
+            c0, w0 = _t.thread_time(), _t.time()
+            try:
+                return fn(*a, **k)
+            finally:
+                log.append((kind, _t.thread_time() - c0, w0, _t.time()))
+
+        wrapper._timed = True
+        return wrapper
+
+    point.loaded_profiles = timed("profiles", point.loaded_profiles)
+    run._chunk_task = timed("chunk", run._chunk_task)
+    run._PHASE_LOG = log
+
+
+def _take_worker_log():
+    import time as _t
+
+    import skisnow.sweep._run as run
+
+    log = list(run._PHASE_LOG)
+    run._PHASE_LOG.clear()
+    return {"log": log, "cpu": _t.process_time()}
+
+
+def _thread_cpu() -> dict[int, float]:
+    return {t.id: t.user_time + t.system_time for t in psutil.Process().threads()}
+
+
+def _nanny_cpu(client) -> float:
+    total = 0.0
+    for child in psutil.Process().children(recursive=True):
+        try:
+            name = " ".join(child.cmdline())
+            if "forkserver" in name:
+                continue
+            t = child.cpu_times()
+            total += t.user + t.system
+        except psutil.Error:
+            pass
+    workers = client.run(os.getpid)
+    for pid in workers.values():
+        t = psutil.Process(pid).cpu_times()
+        total -= t.user + t.system
+    return total
+
+
+def one_run(n: int, tmp: Path, tag: str) -> dict:
+    import threading
+
+    from distributed import Client
+
+    import skisnow.sweep._run as runmod
+    import skisnow.sweep._store as store
+    from skisnow.sweep import run_sweep
+    from skisnow.sweep._run import local_cluster
+
+    t0 = time.perf_counter()
+    cluster = local_cluster(n)
+    client = Client(cluster)
+    startup = time.perf_counter() - t0
+    client.run(_install_worker_timers)
+    s = spec()
+
+    # client timers: the store's creation and each chunk's write
+    writes: list[float] = []
+    prep: list[float] = []
+    orig_write, orig_prep = store.ChunkWriter.write, runmod.prepare_store
+
+    def write(self, key, values):
+        c0 = time.thread_time()
+        orig_write(self, key, values)
+        writes.append(time.thread_time() - c0)
+
+    def prepare(*a, **k):
+        c0 = time.thread_time()
+        try:
+            return orig_prep(*a, **k)
+        finally:
+            prep.append(time.thread_time() - c0)
+
+    store.ChunkWriter.write, runmod.prepare_store = write, prepare
+    names = {t.native_id: t.name for t in threading.enumerate()}
+    w0 = client.run(time.process_time)
+    nanny0 = _nanny_cpu(client)
+    th0, c0 = _thread_cpu(), time.process_time()
+    try:
+        r = run_sweep(s, tmp / f"{tag}.zarr", client=client)
+    finally:
+        store.ChunkWriter.write, runmod.prepare_store = orig_write, orig_prep
+    th1, c1 = _thread_cpu(), time.process_time()
+    nanny1 = _nanny_cpu(client)
+    end = time.time()
+    logs = client.run(_take_worker_log)
+    names.update({t.native_id: t.name for t in threading.enumerate()})
+    client.close()
+    cluster.close()
+
+    out = {"n": n, "compute": r.compute_time, "startup": startup, "client": c1 - c0}
+    out["threads"] = sorted(
+        ((names.get(i, str(i)), th1[i] - th0.get(i, 0.0)) for i in th1),
+        key=lambda x: -x[1],
+    )
+    out["prep"], out["writes"] = sum(prep), sum(writes)
+    out["nannies"] = nanny1 - nanny0
+    out["workers"] = []
+    for addr, d in logs.items():
+        log = d["log"]
+        prof = [c for k, c, _, _ in log if k == "profiles"]
+        chunks = [c for k, c, _, _ in log if k == "chunk"]
+        last = max(e for _, _, _, e in log) if log else end
+        first = min(s_ for _, _, s_, _ in log) if log else end
+        out["workers"].append(
+            {
+                "cpu": d["cpu"] - w0[addr],
+                "profiles": sum(prof),
+                "n_chunks": len(chunks),
+                "chunks": sum(chunks),
+                "chunk_max": max(chunks, default=0.0),
+                "chunk_min": min(chunks, default=0.0),
+                "first_task_after_end": first - end,
+                "idle_tail": end - last,
+            }
+        )
+    return out
+
+
+def show(o: dict) -> None:
+    print(
+        f"  {o['n']} worker(s): compute {o['compute']:.2f} s (start-up {o['startup']:.2f} s "
+        f"before), load {load()}"
+    )
+    for w in o["workers"]:
+        rest = w["cpu"] - w["profiles"] - w["chunks"]
+        print(
+            f"    worker: CPU {w['cpu']:.2f} s = profile part {w['profiles']:.3f} + "
+            f"{w['n_chunks']} chunks {w['chunks']:.2f} (each {w['chunk_min']:.3f}-"
+            f"{w['chunk_max']:.3f}) + rest {rest:.3f}; idle tail {w['idle_tail']:.3f} s wall"
+        )
+    th = ", ".join(f"{name} {c:.3f}" for name, c in o["threads"] if c >= 0.005)
+    print(
+        f"    client: CPU {o['client']:.2f} s (store creation {o['prep']:.3f}, writes "
+        f"{o['writes']:.3f}); by thread: {th}"
+    )
+    print(f"    nannies: CPU {o['nannies']:.2f} s")
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--runs", type=int, default=1)
+    ap.add_argument("--workers", default="1,2")
+    args = ap.parse_args()
+    ns = [int(v) for v in args.workers.split(",")]
+    print(f"load {load()}")
+    res: dict[int, list[dict]] = {n: [] for n in ns}
+    with tempfile.TemporaryDirectory() as tmp:
+        for r in range(args.runs):
+            for n in ns:
+                o = one_run(n, Path(tmp), f"r{r}w{n}")
+                res[n].append(o)
+                show(o)
+    for n in ns:
+        c = [o["compute"] for o in res[n]]
+        w = [sum(x["cpu"] for x in o["workers"]) for o in res[n]]
+        cl = [o["client"] for o in res[n]]
+        print(
+            f"{n} worker(s): compute median {statistics.median(c):.2f} s of {len(c)} "
+            f"({', '.join(f'{v:.2f}' for v in c)}); workers' CPU summed median "
+            f"{statistics.median(w):.2f} s; client CPU median {statistics.median(cl):.2f} s"
+        )
+    print(f"load {load()}")
+
+
+if __name__ == "__main__":
+    main()
