@@ -12,8 +12,8 @@ and in the client around the store's creation and each chunk's write. Printed pe
   parts, chunks; the chunks' longest and shortest), the rest being the worker's own event loop
   (receiving tasks, sending results, heartbeats) and its idle tail (wall);
 * the client process: CPU by thread (main thread: submission, gathering, writes; the event-loop
-  thread: the scheduler and the client's communication; Zarr's I/O thread), and the writes;
-* the nannies' CPU (the processes that watch the workers);
+  thread: the scheduler, the nannies and the client's communication; Zarr's I/O thread and the
+  threads it writes files from), and the writes;
 * the compute time and, per worker, when it finished its last task (its idle tail).
 
 Every CPU figure is load-independent to first order; wall times are printed with the load.
@@ -30,6 +30,9 @@ from pathlib import Path
 
 import numpy as np
 import psutil
+
+
+DETAIL = False
 
 
 def load() -> str:
@@ -68,7 +71,8 @@ def _install_worker_timers() -> None:
             try:
                 return fn(*a, **k)
             finally:
-                log.append((kind, _t.thread_time() - c0, w0, _t.time()))
+                key = a[2] if kind == "chunk" and len(a) > 2 else None
+                log.append((kind, _t.thread_time() - c0, w0, _t.time(), key))
 
         wrapper._timed = True
         return wrapper
@@ -90,24 +94,6 @@ def _take_worker_log():
 
 def _thread_cpu() -> dict[int, float]:
     return {t.id: t.user_time + t.system_time for t in psutil.Process().threads()}
-
-
-def _nanny_cpu(client) -> float:
-    total = 0.0
-    for child in psutil.Process().children(recursive=True):
-        try:
-            name = " ".join(child.cmdline())
-            if "forkserver" in name:
-                continue
-            t = child.cpu_times()
-            total += t.user + t.system
-        except psutil.Error:
-            pass
-    workers = client.run(os.getpid)
-    for pid in workers.values():
-        t = psutil.Process(pid).cpu_times()
-        total -= t.user + t.system
-    return total
 
 
 def one_run(n: int, tmp: Path, tag: str) -> dict:
@@ -147,14 +133,12 @@ def one_run(n: int, tmp: Path, tag: str) -> dict:
     store.ChunkWriter.write, runmod.prepare_store = write, prepare
     names = {t.native_id: t.name for t in threading.enumerate()}
     w0 = client.run(time.process_time)
-    nanny0 = _nanny_cpu(client)
     th0, c0 = _thread_cpu(), time.process_time()
     try:
         r = run_sweep(s, tmp / f"{tag}.zarr", client=client)
     finally:
         store.ChunkWriter.write, runmod.prepare_store = orig_write, orig_prep
     th1, c1 = _thread_cpu(), time.process_time()
-    nanny1 = _nanny_cpu(client)
     end = time.time()
     logs = client.run(_take_worker_log)
     names.update({t.native_id: t.name for t in threading.enumerate()})
@@ -167,14 +151,13 @@ def one_run(n: int, tmp: Path, tag: str) -> dict:
         key=lambda x: -x[1],
     )
     out["prep"], out["writes"] = sum(prep), sum(writes)
-    out["nannies"] = nanny1 - nanny0
     out["workers"] = []
     for addr, d in logs.items():
         log = d["log"]
-        prof = [c for k, c, _, _ in log if k == "profiles"]
-        chunks = [c for k, c, _, _ in log if k == "chunk"]
-        last = max(e for _, _, _, e in log) if log else end
-        first = min(s_ for _, _, s_, _ in log) if log else end
+        prof = [c for k, c, _, _, _ in log if k == "profiles"]
+        chunks = [c for k, c, _, _, _ in log if k == "chunk"]
+        last = max(e for _, _, _, e, _ in log) if log else end
+        first = min(s_ for _, _, s_, _, _ in log) if log else end
         out["workers"].append(
             {
                 "cpu": d["cpu"] - w0[addr],
@@ -185,6 +168,7 @@ def one_run(n: int, tmp: Path, tag: str) -> dict:
                 "chunk_min": min(chunks, default=0.0),
                 "first_task_after_end": first - end,
                 "idle_tail": end - last,
+                "by_chunk": [(key[2], c) for k, c, _, _, key in log if k == "chunk"],
             }
         )
     return out
@@ -202,19 +186,26 @@ def show(o: dict) -> None:
             f"{w['n_chunks']} chunks {w['chunks']:.2f} (each {w['chunk_min']:.3f}-"
             f"{w['chunk_max']:.3f}) + rest {rest:.3f}; idle tail {w['idle_tail']:.3f} s wall"
         )
+        if DETAIL:
+            print(
+                "      chunks (modulus index: CPU s, in order run): "
+                + ", ".join(f"{k}: {c:.3f}" for k, c in w["by_chunk"])
+            )
     th = ", ".join(f"{name} {c:.3f}" for name, c in o["threads"] if c >= 0.005)
     print(
         f"    client: CPU {o['client']:.2f} s (store creation {o['prep']:.3f}, writes "
         f"{o['writes']:.3f}); by thread: {th}"
     )
-    print(f"    nannies: CPU {o['nannies']:.2f} s")
 
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--runs", type=int, default=1)
     ap.add_argument("--workers", default="1,2")
+    ap.add_argument("--detail", action="store_true", help="print every chunk's CPU")
     args = ap.parse_args()
+    global DETAIL
+    DETAIL = args.detail
     ns = [int(v) for v in args.workers.split(",")]
     print(f"load {load()}")
     res: dict[int, list[dict]] = {n: [] for n in ns}

@@ -260,24 +260,30 @@ def _zone(
 ) -> Zone:
     if not runs:
         return _empty_zone(name, pressures=line_force is not None)
-    sel = np.zeros(x.size, dtype=bool)
-    for i, j in runs:
-        sel[i : j + 1] = True
-    area = float(line_area[sel].sum())
+
+    def picked(values: np.ndarray) -> np.ndarray:
+        # the stations of the runs in order: the same contiguous values a boolean mask would
+        # pick (the same sums to the last bit), without a pass over the whole ski per array
+        if len(runs) == 1:
+            i, j = runs[0]
+            return values[i : j + 1]
+        return np.concatenate([values[i : j + 1] for i, j in runs])
+
+    area = float(picked(line_area).sum())
     intervals = tuple((float(x[i] - dx / 2), float(x[j] + dx / 2)) for i, j in runs)
     if line_force is not None:
-        force = float(line_force[sel].sum())
+        force = float(picked(line_force).sum())
         mean_p = force / area if area > 0 else float("nan")
-        max_p = float(pmax_along[sel].max())  # type: ignore[index]
+        max_p = float(picked(pmax_along).max())  # type: ignore[arg-type]
         share = force / total_force if total_force > 0 else float("nan")
-        pen = float(pen_along[sel].max())  # type: ignore[index]
+        pen = float(picked(pen_along).max())  # type: ignore[arg-type]
     else:
         force, mean_p, max_p, share, pen = 0.0, float("nan"), float("nan"), 0.0, float("nan")
     return Zone(
         name=name,
         start=intervals[0][0],
         end=intervals[-1][1],
-        length=float(sel.sum() * dx),
+        length=float(sum(j - i + 1 for i, j in runs) * dx),
         area=area,
         force=force,
         load_share=share,
