@@ -18,8 +18,11 @@ Rows (targets of issue 29 in brackets):
   error at 1e-10) [≤ 0.3 s / ≤ 1.5 s, ≥ 25× tamaas];
 * ``flexible`` — the flexible ski against the bare rigid solve, six cases [≤ 1.5×];
 * ``sweep``    — the Figure 8/9 sweep (skate, 126 masses × 20 moduli, beam profiles) on a local
-  Dask cluster of 1 and 2 worker processes, compute time, and each worker's and the client's
-  CPU during the run (what each core must give on an idle machine) [< 2 s on 2; ≥ 1.8× over 1];
+  Dask cluster of 1 and 2 worker processes, ``--sweep-runs`` runs each (default 3, 1 and 2
+  alternately, a fresh cluster each, its start-up timed apart): the compute time (median) and
+  each worker's and the client's CPU during the run (what each core must give on an idle
+  machine) [< 2 s on 2; ≥ 1.8× over 1]; ``benchmarks/sweep_phases.py`` splits that CPU by
+  phase;
 * ``explore``  — the explorer's default page (3,120 solves) [< 8 s];
 * ``cycle``    — 100-frame load cycles, every ski × template, rigid route, and two flexible
   [< 0.3 s];
@@ -253,7 +256,7 @@ def row_flexible(repeat: int) -> None:
     record("flexible / bare rigid (CPU, worst of 6)", f"{worst:.2f}", "<= 1.5", before)
 
 
-def row_sweep() -> None:
+def row_sweep(runs: int = 3) -> None:
     import tempfile
     from pathlib import Path
 
@@ -272,26 +275,42 @@ def row_sweep() -> None:
         n_points=4096,
     )
     before = load()
-    times = {}
+    times: dict[int, list[float]] = {1: [], 2: []}
+    cpus: dict[int, list[tuple[list[float], float]]] = {1: [], 2: []}
     with tempfile.TemporaryDirectory() as tmp:
+        # 1 and 2 workers alternately, each run on a freshly started cluster (its start-up
+        # timed apart, before the run): a load that changes over the runs hits both alike
+        for r in range(runs):
+            for n in (1, 2):
+                t0 = time.perf_counter()
+                cluster = local_cluster(n)
+                client = Client(cluster)
+                start = time.perf_counter() - t0
+                # the workers' CPU during the run (load-independent: what each core must give
+                # on an idle machine) and the client's (its serial part: store, writes,
+                # scheduler)
+                w0, c0 = client.run(time.process_time), time.process_time()
+                run = run_sweep(spec, Path(tmp) / f"r{r}w{n}.zarr", client=client)
+                w1, c1 = client.run(time.process_time), time.process_time()
+                client.close()
+                cluster.close()
+                times[n].append(run.compute_time)
+                busy = sorted((w1[k] - w0[k] for k in w1), reverse=True)
+                cpus[n].append((busy, c1 - c0))
+                print(
+                    f"    run {r + 1}, {n} worker(s): compute {run.compute_time:.2f} s, wall "
+                    f"{run.wall_time:.2f} s (cluster start-up {start:.2f} s before); CPU of "
+                    f"each worker {', '.join(f'{b:.2f}' for b in busy)} s, of the client "
+                    f"{c1 - c0:.2f} s; load {load()}",
+                    flush=True,
+                )
         for n in (1, 2):
-            t0 = time.perf_counter()
-            cluster = local_cluster(n)
-            client = Client(cluster)
-            start = time.perf_counter() - t0
-            # the workers' CPU during the run (load-independent: what each core must give on an
-            # idle machine) and the client's (its serial part: store, profiles if computed here)
-            w0, c0 = client.run(time.process_time), time.process_time()
-            run = run_sweep(spec, Path(tmp) / f"w{n}.zarr", client=client)
-            w1, c1 = client.run(time.process_time), time.process_time()
-            client.close()
-            cluster.close()
-            times[n] = run.compute_time
-            busy = sorted((w1[k] - w0[k] for k in w1), reverse=True)
+            w = [sum(b) for b, _ in cpus[n]]
             print(
-                f"    {n} worker(s): compute {run.compute_time:.2f} s, wall {run.wall_time:.2f} s "
-                f"(cluster start-up {start:.2f} s before); CPU of each worker "
-                f"{', '.join(f'{b:.2f}' for b in busy)} s, of the client {c1 - c0:.2f} s"
+                f"    {n} worker(s), median of {runs}: compute "
+                f"{statistics.median(times[n]):.2f} s; workers' CPU summed "
+                f"{statistics.median(w):.2f} s, client CPU "
+                f"{statistics.median(c for _, c in cpus[n]):.2f} s"
             )
         # the same sweep in this process: its CPU time is what the workers need between them
         c0 = time.process_time()
@@ -313,9 +332,10 @@ def row_sweep() -> None:
             f"    the 20 chunks alone: CPU {chunks:.2f} s = {1e3 * chunks / 2520:.2f} ms per "
             f"point; on 2 idle cores ~{chunks / 2:.2f} s plus the client's profiles"
         )
+    t1, t2 = statistics.median(times[1]), statistics.median(times[2])
     record(
-        "Figure 8/9 sweep, 2520 solves",
-        f"{times[2]:.2f} s on 2 workers, {times[1]:.2f} s on 1 ({times[1] / times[2]:.2f}x)",
+        f"Figure 8/9 sweep, 2520 solves (median of {runs})",
+        f"{t2:.2f} s on 2 workers, {t1:.2f} s on 1 ({t1 / t2:.2f}x)",
         "< 2 s on 2, >= 1.8x",
         before,
     )
@@ -405,6 +425,7 @@ def main() -> None:
     ap.add_argument("--repeat", type=int, default=30, help="repeats of the fast solves")
     ap.add_argument("--hertz-sizes", default="512,1024")
     ap.add_argument("--no-peers", action="store_true", help="skip tamaas even if importable")
+    ap.add_argument("--sweep-runs", type=int, default=3, help="runs of the sweep row (median)")
     args = ap.parse_args()
     rows = [r.strip() for r in args.rows.split(",") if r.strip()]
     unknown = sorted(set(rows) - set(ROWS))
@@ -427,7 +448,7 @@ def main() -> None:
         elif row == "flexible":
             row_flexible(max(3, args.repeat // 3))
         elif row == "sweep":
-            row_sweep()
+            row_sweep(args.sweep_runs)
         elif row == "explore":
             row_explore()
         elif row == "cycle":
