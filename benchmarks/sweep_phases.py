@@ -31,7 +31,6 @@ from pathlib import Path
 import numpy as np
 import psutil
 
-
 DETAIL = False
 
 
@@ -96,7 +95,12 @@ def _thread_cpu() -> dict[int, float]:
     return {t.id: t.user_time + t.system_time for t in psutil.Process().threads()}
 
 
-def one_run(n: int, tmp: Path, tag: str) -> dict:
+def _replay(out: dict, spec, ski, position, modulus) -> dict:
+    """A chunk function that returns a chunk computed beforehand: the machinery alone."""
+    return {k: v.copy() for k, v in out.items()}
+
+
+def one_run(n: int, tmp: Path, tag: str, machinery: dict | None = None) -> dict:
     import threading
 
     from distributed import Client
@@ -135,7 +139,14 @@ def one_run(n: int, tmp: Path, tag: str) -> dict:
     w0 = client.run(time.process_time)
     th0, c0 = _thread_cpu(), time.process_time()
     try:
-        r = run_sweep(s, tmp / f"{tag}.zarr", client=client)
+        if machinery is None:
+            r = run_sweep(s, tmp / f"{tag}.zarr", client=client)
+        else:  # 20 tasks that cost nothing: Dask's and Zarr's CPU alone
+            import functools
+
+            fn = functools.partial(_replay, machinery)
+            fn.__module__, fn.__qualname__ = __name__, "_replay"  # type: ignore[attr-defined]
+            r = run_sweep(s, tmp / f"{tag}.zarr", client=client, chunk_function=fn)
     finally:
         store.ChunkWriter.write, runmod.prepare_store = orig_write, orig_prep
     th1, c1 = _thread_cpu(), time.process_time()
@@ -198,12 +209,94 @@ def show(o: dict) -> None:
     )
 
 
+def _chunks(moduli, profiles, q=None) -> float:
+    from skisnow.sweep import contact_chunk
+
+    s = spec()
+    c0 = time.process_time()
+    for e in moduli:
+        contact_chunk(s, "skate", -0.120, float(e), profiles)
+    c = time.process_time() - c0
+    if q is not None:
+        q.put(c)
+    return c
+
+
+def _fft(q=None) -> float:
+    a = np.random.default_rng(0).random(8192)
+    c0 = time.process_time()
+    for _ in range(6000):
+        np.fft.irfft(np.fft.rfft(a) * 1.0001)
+    c = time.process_time() - c0
+    if q is not None:
+        q.put(c)
+    return c
+
+
+def concurrency(repeats: int = 2) -> None:
+    """CPU of the same work alone and as two processes at once (forked, warm)."""
+    from multiprocessing import get_context
+
+    from skisnow.sweep import contact_chunk
+    from skisnow.sweep._point import loaded_profiles
+
+    s = spec()
+    profiles = loaded_profiles(s, "skate", -0.120)
+    contact_chunk(s, "skate", -0.120, 100e6, profiles)  # warm: imports, kernels, caches
+    halves = (s.snow_moduli[0::2], s.snow_moduli[1::2])
+    ctx = get_context("fork")
+    for _ in range(repeats):
+        for name, jobs in (
+            ("20 chunks (10 + 10)", [(_chunks, (h, profiles)) for h in halves]),
+            ("FFT loop (control)", [(_fft, ()), (_fft, ())]),
+        ):
+            alone = [fn(*a) for fn, a in jobs]
+            q = ctx.Queue()
+            procs = [ctx.Process(target=fn, args=(*a, q)) for fn, a in jobs]
+            for p in procs:
+                p.start()
+            for p in procs:
+                p.join()
+            both = [q.get() for _ in procs]
+            seq = []  # forked too, one after the other: a fresh process's own costs
+            for fn, a in jobs:
+                p = ctx.Process(target=fn, args=(*a, q))
+                p.start()
+                p.join()
+                seq.append(q.get())
+            print(
+                f"  {name}: in this process one after the other {sum(alone):.2f} s CPU; two "
+                f"forked processes one after the other {sum(seq):.2f} s "
+                f"({100 * (sum(seq) / sum(alone) - 1):+.0f} %), at once {sum(both):.2f} s "
+                f"({100 * (sum(both) / sum(alone) - 1):+.0f} %); load {load()}"
+            )
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--runs", type=int, default=1)
     ap.add_argument("--workers", default="1,2")
     ap.add_argument("--detail", action="store_true", help="print every chunk's CPU")
+    ap.add_argument(
+        "--machinery",
+        action="store_true",
+        help="chunks that return a chunk computed beforehand: the CPU of Dask and Zarr alone",
+    )
+    ap.add_argument(
+        "--concurrency",
+        action="store_true",
+        help="the 20 chunks' CPU in one process against two processes at once (no Dask), "
+        "and an FFT loop that fits in the cores' own caches as a control; then exit",
+    )
     args = ap.parse_args()
+    if args.concurrency:
+        concurrency()
+        return
+    machinery = None
+    if args.machinery:
+        from skisnow.sweep import contact_chunk
+
+        machinery = contact_chunk(spec(), "skate", -0.120, 100e6)
     global DETAIL
     DETAIL = args.detail
     ns = [int(v) for v in args.workers.split(",")]
@@ -212,7 +305,7 @@ def main() -> None:
     with tempfile.TemporaryDirectory() as tmp:
         for r in range(args.runs):
             for n in ns:
-                o = one_run(n, Path(tmp), f"r{r}w{n}")
+                o = one_run(n, Path(tmp), f"r{r}w{n}", machinery)
                 res[n].append(o)
                 show(o)
     for n in ns:
