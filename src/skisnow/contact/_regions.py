@@ -260,8 +260,10 @@ def footprint(
     idx = region_index(xs, marks)
     bounds = [-np.inf, *marks, np.inf]
 
-    def metrics(sel: NDArray[np.bool_]) -> dict[str, float]:
-        n = int(sel.sum())
+    def metrics(sel: NDArray[np.bool_] | slice, n: int | None = None) -> dict[str, float]:
+        # sel: a mask, or the slice of one patch (the same values in the same order, so the
+        # same sums to the last bit, without a pass over the whole ski per array); n: its cells
+        n = int(sel.sum()) if n is None else n  # type: ignore[union-attr]
         if n == 0:
             zero = 0.0 if has_load else float("nan")
             return {"length": 0.0, "area": 0.0, "force": zero, "load_share": zero,
@@ -296,15 +298,13 @@ def footprint(
         )
     patch_list = []
     for i, j in runs(mask):
-        sel = np.zeros(xs.size, dtype=bool)
-        sel[i : j + 1] = True
         spanned = tuple(names[k] for k in np.unique(idx[i : j + 1]))
         patch_list.append(
             Patch(
                 start=float(xs[i] - step / 2),
                 end=float(xs[j] + step / 2),
                 regions=spanned,
-                **metrics(sel),
+                **metrics(slice(i, j + 1), j + 1 - i),
             )
         )
     return Footprint(regions=tuple(regions), patches=tuple(patch_list), marks=marks, rule=rule)
