@@ -260,10 +260,10 @@ def footprint(
     idx = region_index(xs, marks)
     bounds = [-np.inf, *marks, np.inf]
 
-    def metrics(sel: NDArray[np.bool_] | slice, n: int | None = None) -> dict[str, float]:
-        # sel: a mask, or the slice of one patch (the same values in the same order, so the
-        # same sums to the last bit, without a pass over the whole ski per array); n: its cells
-        n = int(sel.sum()) if n is None else n  # type: ignore[union-attr]
+    def metrics(sel: NDArray[np.intp] | slice, n: int) -> dict[str, float]:
+        # sel: the stations (indices in order, or the slice of one patch) and n their number:
+        # the values a boolean mask would pick, in the same order, so the same sums to the last
+        # bit, without a pass over the whole ski per array
         if n == 0:
             zero = 0.0 if has_load else float("nan")
             return {"length": 0.0, "area": 0.0, "force": zero, "load_share": zero,
@@ -293,12 +293,13 @@ def footprint(
                 contact_start=float(xs[where[0]] - step / 2) if where.size else float("nan"),
                 contact_end=float(xs[where[-1]] + step / 2) if where.size else float("nan"),
                 cells=int(where.size),
-                **metrics(sel),
+                **metrics(where, int(where.size)),
             )
         )
     patch_list = []
     for i, j in runs(mask):
-        spanned = tuple(names[k] for k in np.unique(idx[i : j + 1]))
+        # the regions it spans, in order (np.unique's values, without its sort)
+        spanned = tuple(names[k] for k in np.flatnonzero(np.bincount(idx[i : j + 1])))
         patch_list.append(
             Patch(
                 start=float(xs[i] - step / 2),
