@@ -66,6 +66,46 @@ def test_zone_metrics_regions_are_the_footprint_regions() -> None:
     assert skate["kick_zone"].length == 0.0 and skate.footprint.rule == "balance point"
 
 
+@pytest.mark.parametrize(
+    ("ski", "mass", "position", "modulus"),
+    [("classic", 75.0, -0.120, 50e6), ("classic", 40.0, -0.120, 300e6),
+     ("classic", 110.0, 0.0, 20e6), ("skate", 60.0, -0.120, 100e6)],
+)  # fmt: skip
+def test_metrics_are_the_sums_over_their_stations_to_the_last_bit(ski, mass, position, modulus):
+    # Every zone, region and patch metric is the plain sum (or maximum) of the per-station
+    # values over its stations, taken here independently with a boolean mask of the stations
+    # its intervals cover: equal to the last bit (the same values summed in the same order), so
+    # no shortcut (prefix sums, reordering) may change a stored number.
+    c = solve_case(ski, mass=mass, load_position=position, snow_modulus=modulus,
+                   profile_source="beam", n_points=1024)  # fmt: skip
+    s, z = c.solution, c.zones
+    x, dx, p = s.x, s.dx, s.pressure
+    force, area = p * dx * s.width, np.full(x.size, dx * s.width)
+
+    def stations(intervals) -> np.ndarray:
+        sel = np.zeros(x.size, dtype=bool)
+        for a, b in intervals:
+            sel |= (x > a) & (x < b)  # interval ends lie half a cell outside the stations
+        return sel
+
+    zones = [z[n] for n in ("rear", "middle", "front", "total", "kick", *z.footprint.names)]
+    for zone in zones:
+        if not zone.intervals:
+            continue
+        sel = stations(zone.intervals)
+        assert zone.force == float(force[sel].sum()) and zone.area == float(area[sel].sum())
+        assert zone.max_pressure == float(p[sel].max())
+        assert zone.length == float(sel.sum() * dx)
+    for patch in z.footprint.patches:
+        sel = stations([(patch.start, patch.end)])
+        assert patch.force == float(force[sel].sum()) and patch.area == float(area[sel].sum())
+        assert patch.max_pressure == float(p[sel].max()) and patch.length == sel.sum() * dx
+    for region in z.footprint.regions:
+        sel = (p > 0) & stations([(region.start, region.end)])
+        assert region.force == float(force[sel].sum()) and region.cells == int(sel.sum())
+        assert region.area == float(area[sel].sum())
+
+
 CASES = [
     ("classic", -0.120, 20e6, "rigid"),
     ("classic", -0.070, 50e6, "rigid"),
