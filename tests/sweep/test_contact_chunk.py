@@ -120,3 +120,27 @@ def test_profiles_computed_in_parts_give_the_same_chunk(chunks, n_parts) -> None
     for name, want in chunks[("classic", 200e6)].items():
         np.testing.assert_array_equal(out[name], want, err_msg=name)
     assert not split_profiles(_spec(profile_source="network"))  # JAX stays in the client
+
+
+@pytest.mark.slow
+def test_two_worker_processes_store_what_one_process_stores(tmp_path) -> None:
+    # The Dask path of the physics (beam profiles in one part per worker on a local cluster of
+    # forked processes, chunks softest snow first in whatever order they finish, profile-only
+    # variables written once per writer) must store the very numbers of the in-process path:
+    # every array equal to the last bit, iteration counts and residuals included.
+    import zarr
+
+    from skisnow.sweep import open_sweep, run_sweep
+
+    spec = _spec(masses=(20.0, 45.0, 70.0, 95.0), snow_moduli=(20e6, 100e6, 400e6))
+    run_sweep(spec, tmp_path / "one.zarr", workers=0)
+    run = run_sweep(spec, tmp_path / "two.zarr", workers=2)
+    assert run.workers == 2 and len(run.computed) == 6
+    a, b = open_sweep(tmp_path / "one.zarr"), open_sweep(tmp_path / "two.zarr")
+    assert set(a.data_vars) == set(b.data_vars)
+    for name in a.data_vars:
+        np.testing.assert_array_equal(a[name].values, b[name].values, err_msg=name)
+    # and the profile-only variables were written (the total zone has a Breitschädel area)
+    group = zarr.open_group(str(tmp_path / "two.zarr"), mode="r")
+    total = spec.zones.index("total")
+    assert (group["breitschaedel_area_cm2"][..., total] > 0).all()
