@@ -236,7 +236,9 @@ def run_sweep(
             Start the workers of your own cluster with ``MALLOC_TRIM_THRESHOLD_=33554432`` and
             ``MALLOC_MMAP_THRESHOLD_=16777216`` in their environment (as the local cluster
             does, see :func:`local_cluster`): with Dask's default the solves run ~15 % slower;
-            ``DASK_DISTRIBUTED__WORKER__PROFILE__ENABLED=False`` spares another ~10 %.
+            ``DASK_DISTRIBUTED__WORKER__PROFILE__ENABLED=False`` spares another ~10 %, and
+            ``DASK_DISTRIBUTED__ADMIN__TICK__INTERVAL=200ms`` the event loops' idle ticks
+            (the other settings of :func:`local_cluster` likewise).
         workers: workers of the local cluster (default :func:`default_workers`); ``0`` computes
             in this process without Dask (for small grids and debugging).
         client: an existing ``distributed.Client`` to use (overrides ``scheduler``/``workers``).
