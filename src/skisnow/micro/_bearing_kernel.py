@@ -277,6 +277,11 @@ def _bearing_kernel(
             ch_hi = np.empty(size_ch)
             ch_w = np.empty(size_ch)
             bulk = np.empty(size_ch, np.int64)
+            # the chunks' heights and slope factors, copied contiguously: step 3 reads them
+            # for every position of the tile, and the rows of the map they come from are far
+            # apart in memory
+            ch_hv = np.empty((size_ch, _CHUNK))
+            ch_wv = np.empty((size_ch, _CHUNK))
             res = np.empty(6)
             for ti in range(si, se, bx):
                 te = min(ti + bx, se)
@@ -336,6 +341,8 @@ def _bearing_kernel(
                                 lo_h = min(lo_h, hrow[gj])
                                 hi_h = max(hi_h, hrow[gj])
                                 sw += wrow[gj]
+                                ch_hv[nch, gj - k0] = hrow[gj]
+                                ch_wv[nch, gj - k0] = wrow[gj]
                             ch_i[nch] = gi
                             ch_j0[nch] = k0
                             ch_j1[nch] = k1
@@ -369,7 +376,8 @@ def _bearing_kernel(
                                 delta = 3.0 * err + 1e-300
                                 lo, hi = max(guess - delta, tau_t), guess + delta
                             while not _band_select(
-                                h, w, ch_i, ch_j0, ch_j1, ch_lo, ch_hi, ch_w, nch, bulk, pi, pj,
+                                ch_hv, ch_wv, ch_i, ch_j0, ch_j1, ch_lo, ch_hi, ch_w, nch, bulk,
+                                pi, pj,
                                 mirror, n, lo, hi, band, band_w, res,
                             ):  # fmt: skip
                                 lo, hi = (hi, np.inf) if res[5] > 0 else (tau_t, lo)

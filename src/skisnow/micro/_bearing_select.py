@@ -46,8 +46,8 @@ def _kth_largest_inplace(a: np.ndarray, m: int, k: int) -> float:  # pragma: no 
 
 @numba.njit(cache=True, nogil=True)
 def _band_select(
-    h: np.ndarray,
-    w: np.ndarray,
+    ch_hv: np.ndarray,
+    ch_wv: np.ndarray,
     ch_i: np.ndarray,
     ch_j0: np.ndarray,
     ch_j1: np.ndarray,
@@ -98,11 +98,11 @@ def _band_select(
             bulk[nb] = c
             nb += 1
             continue
-        hrow = h[gi]
-        wrow = w[gi]
-        for gj in range(j0, j1):
-            v = hrow[gj] - srow[gj + off]
-            wv = wrow[gj]
+        hrow = ch_hv[c]
+        wrow = ch_wv[c]
+        for t in range(j1 - j0):
+            v = hrow[t] - srow[j0 + t + off]
+            wv = wrow[t]
             hi = v > g_hi
             khi += hi
             w_hi += wv if hi else 0.0
@@ -122,9 +122,9 @@ def _band_select(
         j0 = ch_j0[c]
         j1 = ch_j1[c]
         if ch_hi[c] - srow[min(max(pj, j0), j1 - 1) + off] > z_hi:
-            hrow = h[gi]
-            for gj in range(j0, j1):
-                z_hi = max(z_hi, hrow[gj] - srow[gj + off])
+            hrow = ch_hv[c]
+            for t in range(j1 - j0):
+                z_hi = max(z_hi, hrow[t] - srow[j0 + t + off])
     scratch = band[kb : 2 * kb]
     scratch[:] = band[:kb]
     fn1 = _kth_largest_inplace(scratch, kb, n + 1 - khi)
@@ -161,9 +161,9 @@ def _band_select(
             j1 = ch_j1[c]
             jf = j0 if pj - j0 > j1 - 1 - pj else j1 - 1
             if ch_lo[c] - srow[jf + off] < fmin:
-                hrow = h[gi]
-                for gj in range(j0, j1):
-                    fmin = min(fmin, hrow[gj] - srow[gj + off])
+                hrow = ch_hv[c]
+                for t in range(j1 - j0):
+                    fmin = min(fmin, hrow[t] - srow[j0 + t + off])
     z0 = z_hi
     if n == 0 or cnt == 0:
         z0 = fn1
