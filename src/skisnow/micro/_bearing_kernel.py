@@ -283,6 +283,7 @@ def _bearing_kernel(
             ch_hv = np.empty((size_ch, _CHUNK))
             ch_wv = np.empty((size_ch, _CHUNK))
             res = np.empty(6)
+            seed = np.empty(2, np.int64)
             for ti in range(si, se, bx):
                 te = min(ti + bx, se)
                 q0i = ii[ti]
@@ -357,6 +358,7 @@ def _bearing_kernel(
                         band = np.empty(2 * n_span)
                         band_w = np.empty(n_span)
                     # step 3: exact selection for every position of the tile
+                    seed[0] = -1
                     for a in range(ti, te):
                         pi = ii[a]
                         for b in range(tj, tje):
@@ -377,7 +379,7 @@ def _bearing_kernel(
                                 lo, hi = max(guess - delta, tau_t), guess + delta
                             while not _band_select(
                                 ch_hv, ch_wv, ch_i, ch_j0, ch_j1, ch_lo, ch_hi, ch_w, nch, bulk,
-                                pi, pj,
+                                seed, pi, pj,
                                 mirror, n, lo, hi, band, band_w, res,
                             ):  # fmt: skip
                                 lo, hi = (hi, np.inf) if res[5] > 0 else (tau_t, lo)

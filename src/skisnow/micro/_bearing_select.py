@@ -56,6 +56,7 @@ def _band_select(
     ch_w: np.ndarray,
     nch: int,
     bulk: np.ndarray,
+    seed: np.ndarray,
     pi: int,
     pj: int,
     mirror: np.ndarray,
@@ -114,7 +115,12 @@ def _band_select(
     if khi > n or khi + kb < n + 1:
         res[5] = 1.0 if khi > n else -1.0
         return False
-    # the largest F (first contact) may lie in a chunk counted whole: read those that can hold it
+    # the largest F (first contact) may lie in a chunk counted whole: read those that can hold
+    # it. The pixel where the previous position found it (seed: chunk, offset) is a first
+    # guess that prunes most of them (the result is the maximum whatever the guess)
+    cs = seed[0]
+    if cs >= 0:
+        z_hi = max(z_hi, ch_hv[cs, seed[1]] - mirror[abs(ch_i[cs] - pi), ch_j0[cs] + seed[1] + off])
     for k in range(nb):
         c = bulk[k]
         gi = ch_i[c]
@@ -124,7 +130,11 @@ def _band_select(
         if ch_hi[c] - srow[min(max(pj, j0), j1 - 1) + off] > z_hi:
             hrow = ch_hv[c]
             for t in range(j1 - j0):
-                z_hi = max(z_hi, hrow[t] - srow[j0 + t + off])
+                v = hrow[t] - srow[j0 + t + off]
+                if v > z_hi:
+                    z_hi = v
+                    seed[0] = c
+                    seed[1] = t
     scratch = band[kb : 2 * kb]
     scratch[:] = band[:kb]
     fn1 = _kth_largest_inplace(scratch, kb, n + 1 - khi)
