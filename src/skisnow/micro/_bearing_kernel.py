@@ -377,12 +377,20 @@ def _bearing_kernel(
                             if err >= 0.0 and guess == guess:
                                 delta = 3.0 * err + 1e-300
                                 lo, hi = max(guess - delta, tau_t), guess + delta
+                            tries = 0
                             while not _band_select(
                                 ch_hv, ch_wv, ch_i, ch_j0, ch_j1, ch_lo, ch_hi, ch_w, nch, bulk,
                                 seed, pi, pj,
                                 mirror, n, lo, hi, band, band_w, res,
                             ):  # fmt: skip
-                                lo, hi = (hi, np.inf) if res[5] > 0 else (tau_t, lo)
+                                # the next bracket beside the last, four times as wide (an open
+                                # bracket reads every chunk on that side); open after two tries
+                                tries += 1
+                                wide = 4.0 * (hi - lo) if tries < 3 else np.inf
+                                if res[5] > 0:
+                                    lo, hi = hi, hi + wide
+                                else:
+                                    lo, hi = max(lo - wide, tau_t), lo
                             wsum, z0, fn, fn1 = res[0], res[1], res[2], res[3]
                             out_w[a, b] = wsum + frac * res[4]
                             out_z[a, b] = z0
