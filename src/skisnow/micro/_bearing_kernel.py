@@ -135,6 +135,7 @@ def bearing_search(
         min(ux, math.ceil(rho / dx)),
         min(uy, math.ceil(rho / dy)),
         float(np.max(h)),
+        _block_max(h),
         table,
         mirror,
         n,
@@ -148,6 +149,16 @@ def bearing_search(
         grid_l,
     )
     return grid_w.ravel(), grid_z.ravel(), grid_l.ravel()
+
+
+def _block_max(h: np.ndarray) -> np.ndarray:
+    """The largest height of every row's blocks of _CHUNK columns (block jb: columns
+    jb·_CHUNK … jb·_CHUNK + _CHUNK − 1; the last one padded with −inf)."""
+    nx, ny = h.shape
+    nb = -(-ny // _CHUNK)
+    pad = np.full((nx, nb * _CHUNK), -np.inf)
+    pad[:, :ny] = h
+    return np.ascontiguousarray(pad.reshape(nx, nb, _CHUNK).max(axis=2))
 
 
 # ---------------------------------------------------------------------------------------------
@@ -172,6 +183,7 @@ def _bearing_kernel(
     uci: int,
     ucj: int,
     h_max: float,
+    bmax: np.ndarray,
     table: np.ndarray,
     mirror: np.ndarray,
     n: int,
@@ -236,14 +248,23 @@ def _bearing_kernel(
             j0 = p0j - rb
             j1 = p1j + rb + 1
             size = (i1 - i0) * (j1 - j0)
+            # (both scans skip a block of _CHUNK columns whose largest h cannot reach the
+            # level they keep: the same pixels are kept, in the same order)
+            midj = (p0j + p1j) // 2
             k = 0
             for i in range(i0, i1):
                 dmi = max(abs(i - p0i), abs(i - p1i))
-                for j in range(j0, j1):
-                    dmj = max(abs(j - p0j), abs(j - p1j))
-                    v = h[i, j] - table[dmi, dmj]
-                    buf[k] = v
-                    k += v >= low0
+                for jb in range(j0 // _CHUNK, (j1 - 1) // _CHUNK + 1):
+                    ja = max(j0, jb * _CHUNK)
+                    je = min(j1, jb * _CHUNK + _CHUNK)
+                    jc = min(max(midj, ja), je - 1)
+                    if bmax[i, jb] - table[dmi, max(abs(jc - p0j), abs(jc - p1j))] < low0:
+                        continue
+                    for j in range(ja, je):
+                        dmj = max(abs(j - p0j), abs(j - p1j))
+                        v = h[i, j] - table[dmi, dmj]
+                        buf[k] = v
+                        k += v >= low0
             tau = _kth_largest_inplace(buf, k, n + 1)
             c_i = np.empty(size, np.int64)
             c_j = np.empty(size, np.int64)
@@ -252,15 +273,21 @@ def _bearing_kernel(
             nc = 0
             for i in range(i0, i1):
                 dni = max(0, p0i - i, i - p1i)
-                for j in range(j0, j1):
-                    dnj = max(0, p0j - j, j - p1j)
-                    hv = h[i, j]
-                    if hv - table[dni, dnj] >= tau:
-                        c_i[nc] = i
-                        c_j[nc] = j
-                        c_h[nc] = hv
-                        c_w[nc] = w[i, j]
-                        nc += 1
+                for jb in range(j0 // _CHUNK, (j1 - 1) // _CHUNK + 1):
+                    ja = max(j0, jb * _CHUNK)
+                    je = min(j1, jb * _CHUNK + _CHUNK)
+                    jc = min(max(midj, ja), je - 1)
+                    if bmax[i, jb] - table[dni, max(0, p0j - jc, jc - p1j)] < tau:
+                        continue
+                    for j in range(ja, je):
+                        dnj = max(0, p0j - j, j - p1j)
+                        hv = h[i, j]
+                        if hv - table[dni, dnj] >= tau:
+                            c_i[nc] = i
+                            c_j[nc] = j
+                            c_h[nc] = hv
+                            c_w[nc] = w[i, j]
+                            nc += 1
             low = np.empty(nc)
             t_i = np.empty(nc, np.int64)
             t_j = np.empty(nc, np.int64)
