@@ -59,6 +59,10 @@ from skisnow.micro._bearing_select import _band_select, _kth_largest_inplace
 
 __all__ = ["bearing_search", "sag"]
 
+#: numba wraps negative indices at every access of a signed index; the hot loops index with
+#: this unsigned type (their indices are never negative) to drop that arithmetic
+u8 = np.uint64
+
 #: pixels per chunk of a row span in step 3 (bounded, counted or read as a whole)
 _CHUNK = 8
 
@@ -232,7 +236,7 @@ def _bearing_kernel(
                 dmi = max(abs(i - p0i), abs(i - p1i))
                 for j in range(max(j0, p0j - ucj), min(j1, p1j + ucj + 1)):
                     dmj = max(abs(j - p0j), abs(j - p1j))
-                    buf[k] = h[i, j] - table[dmi, dmj]
+                    buf[k] = h[u8(i), u8(j)] - table[u8(dmi), u8(dmj)]
                     k += 1
             low0 = _kth_largest_inplace(buf, k, n + 1)
             # a pixel a rows beyond the super-tile has F ≤ max h − s(a·dx) for all its
@@ -262,7 +266,7 @@ def _bearing_kernel(
                         continue
                     for j in range(ja, je):
                         dmj = max(abs(j - p0j), abs(j - p1j))
-                        v = h[i, j] - table[dmi, dmj]
+                        v = h[u8(i), u8(j)] - table[u8(dmi), u8(dmj)]
                         buf[k] = v
                         k += v >= low0
             tau = _kth_largest_inplace(buf, k, n + 1)
@@ -281,12 +285,12 @@ def _bearing_kernel(
                         continue
                     for j in range(ja, je):
                         dnj = max(0, p0j - j, j - p1j)
-                        hv = h[i, j]
-                        if hv - table[dni, dnj] >= tau:
+                        hv = h[u8(i), u8(j)]
+                        if hv - table[u8(dni), u8(dnj)] >= tau:
                             c_i[nc] = i
                             c_j[nc] = j
                             c_h[nc] = hv
-                            c_w[nc] = w[i, j]
+                            c_w[nc] = w[u8(i), u8(j)]
                             nc += 1
             low = np.empty(nc)
             t_i = np.empty(nc, np.int64)
@@ -327,7 +331,7 @@ def _bearing_kernel(
                         gj = c_j[c]
                         dmi = max(abs(gi - q0i), abs(gi - q1i))
                         dmj = max(abs(gj - q0j), abs(gj - q1j))
-                        v = c_h[c] - table[dmi, dmj]
+                        v = c_h[c] - table[u8(dmi), u8(dmj)]
                         low[kl] = v
                         kl += v >= tau
                     tau_t = _kth_largest_inplace(low, kl, n + 1)
@@ -337,7 +341,7 @@ def _bearing_kernel(
                         gj = c_j[c]
                         dni = max(0, q0i - gi, gi - q1i)
                         dnj = max(0, q0j - gj, gj - q1j)
-                        if c_h[c] - table[dni, dnj] >= tau_t:
+                        if c_h[c] - table[u8(dni), u8(dnj)] >= tau_t:
                             t_i[m] = gi
                             t_j[m] = gj
                             t_h[m] = c_h[c]

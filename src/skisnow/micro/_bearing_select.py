@@ -13,6 +13,9 @@ import numpy as np
 
 __all__ = ["_band_select", "_kth_largest_inplace"]
 
+#: an unsigned index type: numba skips the wraparound of negative indices for it
+u8 = np.uint64
+
 
 @numba.njit(cache=True, nogil=True)
 def _kth_largest_inplace(a: np.ndarray, m: int, k: int) -> float:  # pragma: no cover - jit
@@ -87,13 +90,13 @@ def _band_select(
         gi = ch_i[c]
         j0 = ch_j0[c]
         j1 = ch_j1[c]
-        srow = mirror[abs(gi - pi)]
+        srow = mirror[u8(abs(gi - pi))]
         # the sag is least at the chunk's column nearest pj, largest at its farthest end
         jn = min(max(pj, j0), j1 - 1)
         jf = j0 if pj - j0 > j1 - 1 - pj else j1 - 1
-        if ch_hi[c] - srow[jn + off] < g_lo:
+        if ch_hi[c] - srow[u8(jn + off)] < g_lo:
             continue
-        if ch_lo[c] - srow[jf + off] > g_hi:
+        if ch_lo[c] - srow[u8(jf + off)] > g_hi:
             khi += j1 - j0
             w_hi += ch_w[c]
             bulk[nb] = c
@@ -101,16 +104,19 @@ def _band_select(
             continue
         hrow = ch_hv[c]
         wrow = ch_wv[c]
+        srw = srow[j0 + off : j1 + off]
         for t in range(j1 - j0):
-            v = hrow[t] - srow[j0 + t + off]
-            wv = wrow[t]
+            ut = np.uint64(t)
+            v = hrow[ut] - srw[ut]
+            wv = wrow[ut]
             hi = v > g_hi
             khi += hi
             w_hi += wv if hi else 0.0
             z_hi = max(z_hi, v)
             fmin_hi = min(fmin_hi, v if hi else np.inf)
-            band[kb] = v
-            band_w[kb] = wv
+            ukb = np.uint64(kb)
+            band[ukb] = v
+            band_w[ukb] = wv
             kb += (not hi) and v >= g_lo
     if khi > n or khi + kb < n + 1:
         res[5] = 1.0 if khi > n else -1.0
