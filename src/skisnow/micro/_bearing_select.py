@@ -104,10 +104,10 @@ def _band_select(
             continue
         hrow = ch_hv[c]
         wrow = ch_wv[c]
-        srw = srow[j0 + off : j1 + off]
+        base = j0 + off
         for t in range(j1 - j0):
             ut = np.uint64(t)
-            v = hrow[ut] - srw[ut]
+            v = hrow[ut] - srow[u8(base + t)]
             wv = wrow[ut]
             hi = v > g_hi
             khi += hi
