@@ -51,7 +51,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from skisnow._errors import InputError
-from skisnow.micro._bearing_kernel import bearing_search
+from skisnow.micro._bearing_kernel import bearing_search, block_max
 from skisnow.micro._bearing_kernel import sag as _sag
 from skisnow.micro._topography import Topography, fill_missing
 
@@ -119,6 +119,11 @@ class BearingSweep:
     stride: int
 
 
+#: positions per side of a tile, tiles per side of a super-tile (performance only)
+_BLOCK = (8, 8)
+_SUPERBLOCK = (2, 2)
+
+
 def slope_factor(topo: Topography) -> np.ndarray:
     """√(1 + |∇h|²) per pixel (eq. 8), central differences (one-sided at the edges)."""
     h = np.asarray(topo.heights)
@@ -153,12 +158,20 @@ def _check(
 
 
 def _prepare(
-    topo: Topography, diameter: float, pressure: float, hardness: float, shape: str, stride: int
+    topo: Topography,
+    diameter: float,
+    pressure: float,
+    hardness: float,
+    shape: str,
+    stride: int,
+    w: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray, float, int, int, np.ndarray, float]:
-    """Validated heights, slope factors (eq. 8), R, footprint half-sizes [pixels], positions
-    and N* = p(2R)²/(H·dx·dy), the pixels that carry the grain's load share (eq. 5)."""
+    """Validated heights, slope factors (eq. 8; ``w`` if the caller computed them for this
+    map already), R, footprint half-sizes [pixels], positions and N* = p(2R)²/(H·dx·dy), the
+    pixels that carry the grain's load share (eq. 5)."""
     h, radius, ci, cj = _check(topo, diameter, pressure, hardness, shape, stride)
-    w = slope_factor(topo.__class__(h, topo.dx, topo.dy, topo.source))
+    if w is None:
+        w = slope_factor(topo.__class__(h, topo.dx, topo.dy, topo.source))
     nstar = pressure * diameter**2 / (hardness * topo.dx * topo.dy)
     return h, w, radius, ci, cj, _positions(h.shape, ci, cj, stride), nstar
 
@@ -203,8 +216,8 @@ def bearing_area(
     hardness: float,
     shape: str = "sphere",
     stride: int = 1,
-    block: int | tuple[int, int] = (8, 8),
-    superblock: int | tuple[int, int] = (2, 2),
+    block: int | tuple[int, int] = _BLOCK,
+    superblock: int | tuple[int, int] = _SUPERBLOCK,
 ) -> BearingMap:
     """Bearing model of one grain size over the raster (eq. 5–9; see the module docstring).
 
@@ -241,14 +254,34 @@ def bearing_area(
         Non-positive diameter or pressure, a hardness not above the pressure, an unknown shape,
         a stride < 1, or a map smaller than the grain's footprint.
     """
-    h, w, radius, ci, cj, pos, nstar = _prepare(topo, diameter, pressure, hardness, shape, stride)
+    return _bearing_area(topo, diameter, pressure, hardness, shape, stride, block, superblock)
+
+
+def _bearing_area(
+    topo: Topography,
+    diameter: float,
+    pressure: float,
+    hardness: float,
+    shape: str,
+    stride: int,
+    block: int | tuple[int, int],
+    superblock: int | tuple[int, int],
+    w: np.ndarray | None = None,
+    bmax: np.ndarray | None = None,
+) -> BearingMap:
+    """:func:`bearing_area`, with the map's slope factors ``w`` and the block maxima of its
+    heights ``bmax`` (``block_max`` of the kernel's module) when a sweep over grain
+    sizes has computed them once for all sizes."""
+    h, w, radius, ci, cj, pos, nstar = _prepare(
+        topo, diameter, pressure, hardness, shape, stride, w
+    )
     dx, dy = topo.dx, topo.dy
     n = math.floor(nstar)
     frac = nstar - n
     out_w, out_z, out_l = bearing_search(
-        h, w, ii=np.unique(pos[:, 0]), jj=np.unique(pos[:, 1]), ci=ci, cj=cj, dx=dx, dy=dy,
-        radius=radius, shape=shape, n=n, frac=frac, stride=stride, block=block,
-        superblock=superblock,
+        h, w, ii=np.arange(ci, h.shape[0] - ci, stride), jj=np.arange(cj, h.shape[1] - cj, stride),
+        ci=ci, cj=cj, dx=dx, dy=dy, radius=radius, shape=shape, n=n, frac=frac, stride=stride,
+        block=block, superblock=superblock, bmax=bmax,
     )  # fmt: skip
     return _result(topo, diameter, pressure, hardness, pos, out_w, out_z, out_l, nstar)
 
@@ -311,15 +344,13 @@ def bearing_sweep(
     if ds.size == 0:
         raise InputError("no grain diameters given")
     filled = fill_missing(topo)
+    # the slope factors and the heights' block maxima serve every size: computed once
+    w = slope_factor(filled)
+    bmax = block_max(np.asarray(filled.heights, dtype=np.float64))
 
     def one(d: float) -> BearingMap:
-        return bearing_area(
-            filled,
-            diameter=float(d),
-            pressure=pressure,
-            hardness=hardness,
-            shape=shape,
-            stride=stride,
+        return _bearing_area(
+            filled, float(d), pressure, hardness, shape, stride, _BLOCK, _SUPERBLOCK, w, bmax
         )
 
     maps: list[BearingMap] = []

@@ -57,7 +57,7 @@ import numpy as np
 
 from skisnow.micro._bearing_select import _band_select, _kth_largest_inplace
 
-__all__ = ["bearing_search", "sag"]
+__all__ = ["bearing_search", "block_max", "sag"]
 
 #: numba wraps negative indices at every access of a signed index; the hot loops index with
 #: this unsigned type (their indices are never negative) to drop that arithmetic
@@ -94,6 +94,7 @@ def bearing_search(
     stride: int,
     block: int | tuple[int, int],
     superblock: int | tuple[int, int],
+    bmax: np.ndarray | None = None,
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The exact bearing contact at the positions ``ii × jj`` (pixel indices, raster order).
 
@@ -139,7 +140,7 @@ def bearing_search(
         min(ux, math.ceil(rho / dx)),
         min(uy, math.ceil(rho / dy)),
         float(np.max(h)),
-        _block_max(h),
+        block_max(h) if bmax is None else bmax,
         table,
         mirror,
         n,
@@ -155,7 +156,7 @@ def bearing_search(
     return grid_w.ravel(), grid_z.ravel(), grid_l.ravel()
 
 
-def _block_max(h: np.ndarray) -> np.ndarray:
+def block_max(h: np.ndarray) -> np.ndarray:
     """The largest height of every row's blocks of _CHUNK columns (block jb: columns
     jb·_CHUNK … jb·_CHUNK + _CHUNK − 1; the last one padded with −inf)."""
     nx, ny = h.shape
