@@ -33,18 +33,23 @@ Selection in step 3 avoids a full selection per position: the threshold (the (�
 largest F) of a position is guessed from the plane through those of its left, upper and
 upper-left neighbours, one pass sums the candidates above guess + Δ and gathers the band
 guess ± Δ (Δ = 3× the recent guess error), and only the band is selected; a guess that misses
-is retried on the side the pass reports. The pass reads the tile's candidates as row spans cut
-into chunks of 8 pixels: F over a chunk is bounded by its least and largest h and the sag at its
-nearest and farthest columns, so a chunk below the band is skipped and one above it counted whole
-(its Σw precomputed; the largest F of the position is then read from the chunks that can hold
-it), and the others are read contiguously (h, w and a mirrored sag row, no index arrays). The
-super-tile's window is also shrunk to the rows and columns where max h − s(r) still reaches a
-first lower bound of τ from its core.
+is retried on the side the pass reports, in a bracket beside the last one and four times as
+wide (an open bracket only after two such tries). The pass reads the tile's candidates as row
+spans cut into chunks of 8 pixels, their h and w copied contiguously per tile: F over a chunk is
+bounded by its least and largest h and the sag at its nearest and farthest columns, so a chunk
+below the band is skipped and one above it counted whole (its Σw precomputed; the largest F of
+the position is then read from the chunks that can hold it, starting from the pixel where the
+previous position of the tile found it), and the others are read contiguously (h, w and a
+mirrored sag row, no index arrays). The super-tile's window is also shrunk to the rows and
+columns where max h − s(r) still reaches a first lower bound of τ from its core, and its scans
+skip the blocks of 8 columns whose largest h (:func:`block_max`) cannot reach the level they
+keep. The hot loops index with unsigned integers: numba then omits the wraparound arithmetic
+of negative indices at every access.
 
-Cost (measured, ``benchmarks/bench_bearing.py``, preset S3, 1 mm² at 1 µm, 31 sizes
-450–750 µm, 5.2 million position–size pairs): ~4.5 µs CPU per pair (load 7: ~23 s CPU), the
-chunks ~10 % less than reading every candidate; against ~35–45 µs per pair for the earlier
-NumPy block search and ~10 ms for the naive search. ``stride`` trades positions for time
+Cost (measured, ``benchmarks/bench_speed.py --rows bearing``, preset S3, 1 mm² at 1 µm, 31
+sizes 450–750 µm, 5.2 million position–size pairs): ~2.8 µs CPU per pair (load 11: 14.3 s
+CPU; ~3.7 µs before the fourth pass of issue 29, see ``docs/performance/speed.md``); against
+~35–45 µs per pair for the earlier NumPy block search and ~10 ms for the naive search. ``stride`` trades positions for time
 (stride 3 changed the mean A_fr by 4·10⁻⁵ relative on preset S3).
 """
 
