@@ -201,7 +201,7 @@ def main() -> None:
         help="bands without the estimated smoothing bias (the second pass of issue "
         "25: the 'before' of the coverage tables)",
     )
-    ap.add_argument("--criterion", default=None, choices=["evidence", "gcv"],
+    ap.add_argument("--criterion", default=None, choices=["evidence", "gcv", "case-cv"],
                     help="how λ is chosen (default: identify_ski's)")  # fmt: skip
     ap.add_argument("--dx-mm", type=float, default=1.0,
                     help="grid of the reference bench [mm] (issue 25: 1 mm)")  # fmt: skip

@@ -34,6 +34,7 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 os.environ.setdefault("OMP_NUM_THREADS", "1")
 
 import argparse
+import itertools
 import json
 import time
 from concurrent.futures import ProcessPoolExecutor
@@ -72,17 +73,35 @@ def basis_floor(true, n: int, span: tuple[float, float]) -> float:
     return float(100 * np.sqrt(np.mean(np.expm1(err) ** 2)))
 
 
+def along(res, true, step: float = 0.1) -> str:
+    """EI error [%] (rms) in windows of ``step`` along the determined span, tail to tip:
+    where the error is (the span's ends or everywhere)."""
+    s = res.ski
+    ex, de = np.asarray(s.stiffness_x), np.asarray(s.stiffness_determined)
+    err = 100 * np.expm1(np.log(np.asarray(s.stiffness_values) / true.stiffness(ex)))
+    x, e = ex[de], err[de]
+    if x.size == 0:
+        return ""
+    edges = np.arange(np.floor(x[0] / step) * step, x[-1] + step, step)
+    out = []
+    for a, b in itertools.pairwise(edges):
+        m = (x >= a) & (x < b)
+        if m.any():
+            out.append(f"{a * 1e3:.0f}:{np.sqrt(np.mean(e[m] ** 2)):.1f}")
+    return " ".join(out)
+
+
 def run(args: tuple) -> dict:
-    name, noise_um, variant, cache = args
+    name, noise_um, variant, cache, plan, dx_mm = args
     from skisnow.identify import identify_ski
 
     true = true_ski(name)
     kw: dict = {}
     if variant == "clean":
-        bench = bench_of(name, "shop", 0.0, Path(cache))
+        bench = bench_of(name, plan, 0.0, Path(cache), dx_mm)
         kw["noise"] = noise_um * 1e-6
     else:
-        bench = bench_of(name, "shop", noise_um, Path(cache))
+        bench = bench_of(name, plan, noise_um, Path(cache), dx_mm)
     if variant == "truth":
         kw["initial"] = true
     elif variant in ("gcv", "evidence", "gcv-nb", "evidence-nb", "gcv-disc"):
@@ -101,7 +120,9 @@ def run(args: tuple) -> dict:
     z_e, z_z = zscores(res, true)
     span = np.asarray(res.ski.stiffness_x)[np.asarray(res.ski.stiffness_determined)]
     return {
-        "ski": name, "noise": noise_um, "variant": variant, **e, "z_ei": z_e, "z_z0": z_z,
+        "ski": name, "plan": plan, "dx_mm": dx_mm, "noise": noise_um, "variant": variant, **e,
+        "along": along(res, true), "causes": ",".join(res.causes), "nfev": res.n_evaluations,
+        "z_ei": z_e, "z_z0": z_z,
         "lam": res.regularisation, "misfit": res.misfit, "exit": 0 if res.converged else 3,
         "cpu": cpu, "basis60": basis_floor(true, 60, (span[0], span[-1])),
         "basis30": basis_floor(true, 30, (span[0], span[-1])),
@@ -116,11 +137,15 @@ def main() -> None:
     ap.add_argument("--variants", nargs="+",
                     default=["default", "clean", "truth", "lam0.1", "lam10", "lam1000", "n30",
                              "n120"])  # fmt: skip
+    ap.add_argument("--plan", default="shop", choices=["shop", "full"])
+    ap.add_argument("--dx-mm", type=float, default=1.0,
+                    help="grid of the reference bench [mm] (issue 25: 1 mm)")  # fmt: skip
     ap.add_argument("--jobs", type=int, default=1)
     ap.add_argument("--cache", default=str(Path.home() / ".cache" / "skisnow-identify-bench"))
     ap.add_argument("--out", default="identify_diagnosis.jsonl")
     a = ap.parse_args()
-    jobs = [(s, n, v, a.cache) for s in a.skis for n in a.noise_um for v in a.variants]
+    jobs = [(s, n, v, a.cache, a.plan, a.dx_mm)
+            for s in a.skis for n in a.noise_um for v in a.variants]  # fmt: skip
     print(f"load average at start: {os.getloadavg()}")
     cols = [
         "ski",
@@ -141,6 +166,8 @@ def main() -> None:
         "basis30",
         "basis60",
         "basis120",
+        "causes",
+        "along",
     ]
     print(" | ".join(cols))
     with ProcessPoolExecutor(max_workers=max(1, a.jobs)) as pool, open(a.out, "a") as fh:

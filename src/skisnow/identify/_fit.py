@@ -93,6 +93,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from functools import partial
 from typing import Any
 
 import numpy as np
@@ -100,6 +101,7 @@ from numpy.typing import NDArray
 
 from skisnow._errors import ConvergenceError, InputError
 from skisnow.identify._bands import _evidence, _gcv
+from skisnow.identify._cv import case_cv, choose
 from skisnow.identify._homotopy import homotopy, polish, restart_bound
 from skisnow.identify._lm import (
     _DECREMENT_TOL,
@@ -144,6 +146,11 @@ class BenchFit:
     chi2_bound: float
 
 
+def _lowest(records: Sequence[tuple]) -> int:
+    """The record of the lowest score (GCV, minus the log evidence)."""
+    return int(np.argmin([rec[1] for rec in records]))
+
+
 def fit_bench(
     problem: _Problem,
     cases: list[_Case],
@@ -164,7 +171,12 @@ def fit_bench(
     coarser fit carried to a refined z0 basis by
     :func:`~skisnow.identify._resolution.refined_parameters`) start the fit on
     the exact contact directly, like ``initial``."""
-    score = _evidence if criterion == "evidence" else _gcv
+    if criterion == "case-cv":
+        score: Callable = partial(case_cv, sizes=[c.x.size for c in problem.cases])
+        pick: Callable = choose
+    else:
+        score = _evidence if criterion == "evidence" else _gcv
+        pick = _lowest
     # -- start: constant EI, z0 = the lightest profile (least squares on the z0 basis)
     if start_parameters is not None:
         z_start_x, z_start = nodes, np.zeros(nodes.size)  # unused: the start is given
@@ -233,7 +245,7 @@ def fit_bench(
         # from the fit itself if the step raises the misfit: the linearisation does not hold
         # that far).
         records = [score(sol, problem.penalty(v), v) for v in grid]
-        best = int(np.argmin([rec[1] for rec in records]))
+        best = pick(records)
         lam = grid[best]
         if lam != lam_a:
             p_refit = sol.x + records[best][4]
@@ -273,8 +285,7 @@ def fit_bench(
             if last is not None and len(grid) > 1:
                 # λ by GCV on the smoothed path's last fit (its stone the exact one within
                 # the noise): the exact fit then starts at the λ it will most likely keep
-                lam_first = grid[int(np.argmin([score(last, problem.penalty(v), v)[1]
-                                                for v in grid]))]  # fmt: skip
+                lam_first = grid[pick([score(last, problem.penalty(v), v) for v in grid])]
     sol, lam, records, best = exact(p, lam_first)
     bound, dof = restart_bound(sol.jac, problem.penalty_matrix(lam))
     if float(sol.fun @ sol.fun) > bound:
