@@ -150,11 +150,14 @@ def identify_ski(
         Huber weights for bins beyond the noise's extreme (:mod:`skisnow.identify._robust`).
     criterion
         How λ is chosen over ``lambdas``: ``'gcv'`` (generalised cross-validation, Craven &
-        Wahba 1979) or ``'evidence'`` (the Laplace evidence, type-II maximum likelihood,
-        MacKay 1992); both on the Gauss–Newton linearisation. GCV is the default: on the
-        calibration skis of issue 25 the evidence chose λ 10-100 times larger and its bands
-        covered EI at 72 % of the determined stations against GCV's 88 % (both with the
-        smoothing bias at λ / 100; docs/validation/identification-uncertainty.md).
+        Wahba 1979), ``'evidence'`` (the Laplace evidence, type-II maximum likelihood, MacKay
+        1992) or ``'case-cv'`` (leave-one-load-case-out cross-validation with the
+        one-standard-error rule, Rice & Silverman 1991; :mod:`skisnow.identify._cv`); all on
+        the Gauss–Newton linearisation. GCV is the default: on the calibration skis of issue
+        25 the evidence chose λ 10-100 times larger and its bands covered EI at 72 % of the
+        determined stations against GCV's 88 % (both with the smoothing bias at λ / 100); on
+        the full plans of issue 25's ski and ski 1001 case-cv chose λ 1e4-1e5 and did not
+        lower the EI error (docs/validation/identification-uncertainty.md).
     discrepancy_bands
         Add the covariance of a smooth model discrepancy (:func:`~skisnow.identify._bands.
         discrepancy_covariance`, Kennedy & O'Hagan 2001; 1 µm rms over 150 mm). Off by
@@ -199,6 +202,8 @@ def identify_ski(
     xmax = max(float(c[2].max()) for c in raw)
     x_tail = float(md.get("x_tail_mm", xmin * 1e3)) * 1e-3 if x_tail is None else float(x_tail)
     x_tip = float(md.get("x_tip_mm", xmax * 1e3)) * 1e-3 if x_tip is None else float(x_tip)
+    if criterion not in ("gcv", "evidence", "case-cv"):
+        raise InputError(f"criterion must be 'gcv', 'evidence' or 'case-cv', got {criterion!r}")
     if n_camber is None:
         n_camber = _camber_coefficients(raw, x_tip - x_tail)
     for opt, val, lo in (
