@@ -246,28 +246,7 @@ class _Problem:
         #: (u, a, b) of the last contact solution of each case
         self.last_state: list[tuple[NDArray[np.float64], float, float] | None] = [None] * len(cases)
         self.n_data = int(sum(c.x.size for c in cases))
-        #: per case (U, f) of the discrepancy's whitening (None: white noise; set_discrepancy)
-        self.whitening: list[tuple[NDArray[np.float64], NDArray[np.float64]]] | None = None
         self._beam_cache: list[tuple[bytes, _Beam]] = []
-
-    def set_discrepancy(self, rms: float, length: float) -> None:
-        """Fit with a smooth model discrepancy of each load case in the likelihood (Kennedy &
-        O'Hagan 2001; :mod:`skisnow.identify._discrepancy`): residuals and Jacobian whitened by
-        (I + G Gᵀ)^-1/2, G Gᵀ the discrepancy's covariance in σ-normalised bins. ``rms`` 0:
-        white noise only."""
-        from skisnow.identify._discrepancy import whitening
-
-        self.whitening = (
-            None if rms <= 0 else
-            [whitening(c.x, c.w / self.sigma_cases[k], rms=rms, length=length)
-             for k, c in enumerate(self.cases)]
-        )  # fmt: skip
-
-    def _whiten(self, k: int, a: NDArray[np.float64]) -> NDArray[np.float64]:
-        if self.whitening is None:
-            return a
-        u, f = self.whitening[k]
-        return a - u @ (f[:, None] * (u.T @ a)) if a.ndim == 2 else a - u @ (f * (u.T @ a))
 
     def set_bin_weights(self, flat: NDArray[np.float64]) -> None:
         """Set the square roots of the bins' weights from one array over all bins."""
@@ -377,7 +356,7 @@ class _Problem:
             hmod = self.phi_z_cases[k] @ theta_z + a + b * c.x + c.hermite @ u
             self.contacts[k] = pc.x[on]
             bw = c.w * self.bin_weights[k] / self.sigma_cases[k]
-            res_parts.append(self._whiten(k, bw * (hmod - c.h)))
+            res_parts.append(bw * (hmod - c.h))
             if not jacobian:
                 continue
             # tangent at the active points A: K du = U_A dr - dK u; the gaps at A stay zero;
@@ -420,7 +399,7 @@ class _Problem:
             du[:, : self.n_e] -= v
             dh = c.hermite @ du + da[None, :] + c.x[:, None] * db[None, :]
             dh[:, self.n_e :] += self.q_z_cases[k]
-            jac_parts.append(self._whiten(k, bw[:, None] * dh))
+            jac_parts.append(bw[:, None] * dh)
         res = np.concatenate(res_parts)
         jac = np.concatenate(jac_parts) if jacobian else None
         return res, jac
