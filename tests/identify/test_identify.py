@@ -222,6 +222,8 @@ def test_bad_input(bench) -> None:
         ident.identify_ski(bench, n_camber=3)
     with pytest.raises(InputError, match="must contain the balance point and the measured"):
         ident.identify_ski(bench, x_tip=0.5)
+    with pytest.raises(InputError, match="criterion must be 'gcv', 'evidence' or 'case-cv'"):
+        ident.identify_ski(bench, criterion="aic")
 
 
 def test_cli_identify(bench, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
