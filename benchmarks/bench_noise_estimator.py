@@ -26,7 +26,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).parent))
-from bench_identify_coverage import PLANS, _skis, true_ski  # noqa: E402
+from bench_identify_coverage import PLANS, _skis, true_ski
 
 SPACINGS_MM = (2, 4, 10, 20)
 SUBPLANS = {"shop": None, "three": ((20.0, 40.0, 60.0), -120.0)}

@@ -75,6 +75,7 @@ def test_heights_every_20_mm_need_no_noise_option(capsys, tmp_path: Path) -> Non
     code, doc, err = _identify(capsys, ["identify", str(bench), "--out",
                                         str(tmp_path / "c.json"), *_FAST])  # fmt: skip
     assert code in (0, 3), err
-    # the noise is estimated from the data (5 µm true); measured 7.2 µm at 20 mm spacing: the
-    # estimate is within a factor 2, never the refusal asking for --noise-mm
-    assert 0.0025 < doc["noise_mm"] < 0.010
+    # the noise is estimated from the data (5 µm true): across the three profiles at the same
+    # stations, where the free camber cancels (issue 25's target: within ±15 %; one profile's
+    # own fourth differences read 7.2 µm here, they see the camber's waviness)
+    assert 0.00425 < doc["noise_mm"] < 0.00575
