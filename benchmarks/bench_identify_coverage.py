@@ -106,6 +106,8 @@ def errors(res, true) -> dict:
         "z0_in": int(np.sum(np.abs(dd) <= 2 * sdz[dz])),
         "z0_n": int(dz.sum()),
         "ei_span": f"{ex[de][0] * 1e3:.0f}..{ex[de][-1] * 1e3:.0f}" if de.any() else "none",
+        "ei_hw": float(np.median(100 * np.expm1(2 * sde[de]))) if de.any() else np.nan,
+        "z0_hw": float(np.median(2e6 * sdz[dz])) if dz.any() else np.nan,
     }
 
 
@@ -139,7 +141,7 @@ def contact_error(ski, true) -> float:
 
 
 def run_one(args: tuple) -> dict:
-    name, plan, noise_um, cache, with_contact, dx_mm, n_stiffness, criterion, plain = args
+    name, plan, noise_um, cache, with_contact, dx_mm, n_stiffness, criterion, plain, boot = args
     from skisnow.identify import identify_ski
 
     kw: dict = {} if n_stiffness is None else {"n_stiffness": n_stiffness}
@@ -161,6 +163,15 @@ def run_one(args: tuple) -> dict:
            "causes": ",".join(res.causes), "mesh_um": res.mesh_error[0] * 1e6,
            "held_out": held_out(res.ski, true), "lam": res.regularisation,
            "criterion": res.criterion}  # fmt: skip
+    if boot:
+        from skisnow.identify import bootstrap_bands
+
+        t1 = time.process_time()
+        rb = bootstrap_bands(res, bench, replicates=boot, stiffness=True, **kw)
+        eb = errors(rb, true)
+        row.update({"boot_cpu": time.process_time() - t1, "boot_n": (rb.bootstrap or (0,))[0],
+                    "ei_in_b": eb["ei_in"], "z0_in_b": eb["z0_in"], "ei_hw_b": eb["ei_hw"],
+                    "z0_hw_b": eb["z0_hw"]})  # fmt: skip
     if with_contact:
         row["contact"] = contact_error(res.ski, true)
     return row
@@ -203,12 +214,26 @@ def main() -> None:
     )
     ap.add_argument("--criterion", default=None, choices=["evidence", "gcv", "case-cv"],
                     help="how λ is chosen (default: identify_ski's)")  # fmt: skip
+    ap.add_argument("--bootstrap", type=int, default=0,
+                    help="also the bands with a parametric bootstrap of this many replicates "
+                    "(skisnow.identify.bootstrap_bands; z0 and, for the table, EI)")  # fmt: skip
     ap.add_argument("--dx-mm", type=float, default=1.0,
                     help="grid of the reference bench [mm] (issue 25: 1 mm)")  # fmt: skip
     a = ap.parse_args()
     skis = [*map(str, VALIDATION_SEEDS), "issue25"] if a.validation else _skis(a.skis)
     jobs = [
-        (s, p, n, a.cache, a.contact, a.dx_mm, a.n_stiffness, a.criterion, a.no_smoothing_bands)
+        (
+            s,
+            p,
+            n,
+            a.cache,
+            a.contact,
+            a.dx_mm,
+            a.n_stiffness,
+            a.criterion,
+            a.no_smoothing_bands,
+            a.bootstrap,
+        )
         for s in skis
         for p in a.plans
         for n in a.noise_um
@@ -233,7 +258,11 @@ def main() -> None:
         "mesh_um",
         "causes",
         "ei_span",
+        "ei_hw",
+        "z0_hw",
     ]
+    if a.bootstrap:
+        cols += ["ei_in_b", "z0_in_b", "ei_hw_b", "z0_hw_b", "boot_n", "boot_cpu"]
     if a.contact:
         cols.insert(11, "contact")
     print(" | ".join(cols))
@@ -258,7 +287,16 @@ def main() -> None:
             print(f"{p} | {n:g} µm | {len(sel)} | {100 * ce:.1f} % | {100 * cz:.1f} % | "
                   f"{np.median([r['ei_rms'] for r in sel]):.2f} % | "
                   f"{np.median([r['z0_rms'] for r in sel]):.2f} µm | "
-                  f"{sum(r['exit'] == 0 for r in sel)}/{len(sel)}")  # fmt: skip
+                  f"{sum(r['exit'] == 0 for r in sel)}/{len(sel)} | "
+                  f"half-widths EI {np.median([r['ei_hw'] for r in sel]):.1f} %, "
+                  f"z0 {np.median([r['z0_hw'] for r in sel]):.1f} µm")  # fmt: skip
+            if a.bootstrap:
+                be = sum(r["ei_in_b"] for r in sel) / max(sum(r["ei_n"] for r in sel), 1)
+                bz = sum(r["z0_in_b"] for r in sel) / max(sum(r["z0_n"] for r in sel), 1)
+                print(f"  with the bootstrap: EI {100 * be:.1f} %, z0 {100 * bz:.1f} %; "
+                      f"half-widths EI {np.median([r['ei_hw_b'] for r in sel]):.1f} %, "
+                      f"z0 {np.median([r['z0_hw_b'] for r in sel]):.1f} µm; CPU "
+                      f"{np.median([r['boot_cpu'] for r in sel]):.0f} s median")  # fmt: skip
 
 
 def _fmt(v) -> str:

@@ -4,7 +4,8 @@ Nonlinear least squares of the beam of :mod:`skisnow.ski` in unilateral contact 
 stone (Kalliorinne et al. 2023, §3.1, eq. 1) against every profile of a bench sequence
 (:class:`~skisnow.bench.BenchData`), with the exact Jacobian, a homotopy on a smoothed contact,
 Levenberg–Marquardt, λ by generalised cross-validation and Gauss–Newton bands:
-:func:`identify_ski` → :class:`IdentificationResult` (the method: the docstring of
+:func:`identify_ski` → :class:`IdentificationResult`, widened by a parametric bootstrap with
+:func:`bootstrap_bands` (the method: the docstring of
 :mod:`skisnow.identify._identify`); and the uncertainty of an identification predicted for a
 bench plan before measuring (Fisher information, Cramér–Rao):
 :func:`predict_identification_uncertainty` → :class:`BenchPlanPrediction`.
@@ -15,11 +16,13 @@ May import: ski, bench
 from __future__ import annotations
 
 from skisnow.identify._bench_plan import BenchPlanPrediction, predict_identification_uncertainty
+from skisnow.identify._bootstrap import bootstrap_bands
 from skisnow.identify._identify import IdentificationResult, identify_ski
 
 __all__ = [
     "BenchPlanPrediction",
     "IdentificationResult",
+    "bootstrap_bands",
     "identify_ski",
     "predict_identification_uncertainty",
 ]

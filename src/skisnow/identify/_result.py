@@ -61,6 +61,9 @@ class IdentificationResult:
         threshold at the end of the fit (:mod:`skisnow.identify._robust`).
     posterior_inflation
         The factor χ²/dof (>= 1) the bands were widened by.
+    bootstrap
+        ``(replicates, median sd of z0 [m], median sd of log EI)`` of the parametric bootstrap
+        added to the bands (:func:`~skisnow.identify.bootstrap_bands`), None without one.
     causes
         Why the result is not better, main cause first (``'mesh'``, ``'noise'``,
         ``'evaluations'``, ``'model'``, ``'information'``; :mod:`skisnow.identify._diagnosis`).
@@ -91,6 +94,7 @@ class IdentificationResult:
     outliers: tuple[tuple[float, float, float, float, float], ...] = ()
     posterior_inflation: float = 1.0
     causes: tuple[str, ...] = ()
+    bootstrap: tuple[int, float, float] | None = None
 
     @property
     def at_noise(self) -> bool:
