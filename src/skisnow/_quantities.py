@@ -313,6 +313,10 @@ QUANTITIES: dict[str, Quantity] = {
         name="number of posterior samples (0: no intervals)", unit="(count)", low=0.0,
         plausible=(0.0, 1.0e4), integer=True, typical=200.0,
     ),
+    "bootstrap_replicates": Quantity(
+        name="number of bootstrap replicates (0: none; each one identification)",
+        unit="(count)", low=0.0, plausible=(0.0, 200.0), integer=True, typical=0.0,
+    ),
     "ensemble_members": Quantity(
         name="number of ensemble members", unit="(count)", low=1.0, plausible=(1.0, 100.0),
         integer=True, typical=1.0,

@@ -79,3 +79,29 @@ def test_heights_every_20_mm_need_no_noise_option(capsys, tmp_path: Path) -> Non
     # stations, where the free camber cancels (issue 25's target: within ±15 %; one profile's
     # own fourth differences read 7.2 µm here, they see the camber's waviness)
     assert 0.00425 < doc["noise_mm"] < 0.00575
+
+
+def test_bootstrap_option_reaches_every_replicate_and_one_is_refused(
+    capsys, tmp_path: Path, monkeypatch
+) -> None:
+    import skisnow.identify._identify as ident
+
+    bench = _bench(capsys, tmp_path, "b10", 10.0)
+    out = tmp_path / "boot.json"
+    code, doc, err = _identify(capsys, ["identify", str(bench), "--out", str(out),
+                                        "--bootstrap", "1", *_FAST])  # fmt: skip
+    assert code == 2 and "--bootstrap" in err
+    seen: list[dict] = []
+
+    def replicate(_bench, **kw):  # each replicate's identification (the bootstrap's import)
+        seen.append(kw)
+        raise RuntimeError("replicate not run in this test")
+
+    monkeypatch.setattr(ident, "identify_ski", replicate)
+    code, doc, err = _identify(capsys, ["identify", str(bench), "--out", str(out),
+                                        "--bootstrap", "3", *_FAST])  # fmt: skip
+    assert code in (0, 3), err
+    assert len(seen) == 3 and all(k["n_stiffness"] == 20 and k["max_nfev"] == 10 for k in seen)
+    # no replicate ended: the Laplace bands, said so
+    assert doc["bootstrap_replicates"] == 0
+    assert any("fewer than two replicates" in w for w in doc["warnings"])

@@ -60,6 +60,14 @@ def identify(
     max_nfev: Annotated[
         int, typer.Option("--max-nfev", help="Evaluation limit of each stage of the fit.")
     ] = 60,
+    bootstrap: Annotated[
+        int,
+        typer.Option(
+            "--bootstrap",
+            help="Widen the z0 bands by a parametric bootstrap of this many replicates (each "
+            "one identification; 0: the Laplace bands only, 8 calibrated).",
+        ),
+    ] = 0,
     figure: Annotated[
         Path | None,
         typer.Option("--figure", help="Save the passport figure (png/svg/pdf by suffix)."),
@@ -68,9 +76,11 @@ def identify(
 ) -> None:
     """Identify EI(x) and z0(x) from a whole bench sequence (beam on the stone, least squares)."""
     from skisnow.bench import read_bench
-    from skisnow.identify import identify_ski
+    from skisnow.identify import bootstrap_bands, identify_ski
     from skisnow.ski import write_ski
 
+    if bootstrap == 1:
+        raise InputError("--bootstrap must be 0 (none) or at least 2 replicates, got 1")
     if out.suffix.lower() != ".json":
         raise InputError(f"--out {out}: the identified ski is written as a ski file (.json)")
     bench = read_bench(bench_file)
@@ -88,8 +98,7 @@ def identify(
         if not json_out:
             _say(msg, style="dim")
 
-    res = identify_ski(
-        bench,
+    options = dict(
         ski=ski,
         name=name,
         x_tail=None if x_tail_mm is None else x_tail_mm * 1e-3,
@@ -100,9 +109,12 @@ def identify(
         n_camber=n_camber,
         element_length=None if mesh_mm is None else mesh_mm * 1e-3,
         max_nfev=max_nfev,
-        progress=say,
-        source=str(bench_file),
     )
+    res = identify_ski(bench, progress=say, source=str(bench_file), **options)
+    if bootstrap:
+        say(f"bootstrap: {bootstrap} replicate benches, each identified again")
+        res = bootstrap_bands(res, bench, replicates=bootstrap,
+                              **{k: v for k, v in options.items() if k != "name"})  # fmt: skip
     write_ski(res.ski, out)
     if figure is not None:
         from skisnow.plot import plot_passport, save_figure
@@ -117,6 +129,8 @@ def identify(
         warns.insert(0, f"implausible bench accepted with --allow-implausible: {accepted} A "
                      "misfit above the noise may come from these data, not from the causes "
                      "named below.")  # fmt: skip
+    n_boot = res.bootstrap[0] if res.bootstrap else 0
+    boot_note = f"; z0 with a parametric bootstrap of {n_boot} replicates" if n_boot else ""
     doc = {
         "ski": res.ski.name,
         "file": str(out),
@@ -136,7 +150,9 @@ def identify(
         "mesh_error_max_um": res.mesh_error[1] * 1e6,
         "determined_ei_mm": res.ski.provenance.detail("determined_ei_mm"),
         "determined_z0_mm": res.ski.provenance.detail("determined_z0_mm"),
-        "bands": "95 % = 2 sd of the Laplace posterior (noise, prior, discretisation error)",
+        "bands": "95 % = 2 sd of the Laplace posterior (noise, prior, discretisation error)"
+        + boot_note,
+        "bootstrap_replicates": n_boot,
         "outliers": [
             {
                 "mass_kg": m,

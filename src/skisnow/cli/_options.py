@@ -61,6 +61,7 @@ OPTION_QUANTITIES: dict[str, str] = {
     "--n-camber": "spline_coefficients",
     "--max-nfev": "evaluations",
     "--mesh-mm": "beam_element_length",
+    "--bootstrap": "bootstrap_replicates",
     "--target-ei-percent": "percent",
     "--target-z0-um": "noise_um",
     "--temperature-c": "temperature",
