@@ -43,7 +43,7 @@ def _lam_u(lam: float) -> float:
     return min(lam / B.UNDERSMOOTHING, 0.01)
 
 
-def evidence_scales(sol, problem, lam, grid=(1.0, 0.1, 0.01, 1e-3, 1e-4)):
+def evidence_scales(sol, problem, lam, grid=(100.0, 10.0, 1.0, 0.1, 0.01, 1e-3, 1e-4)):
     """(k_e, k_z) maximising the Laplace evidence, the smoothness rows of EI scaled by k_e
     (λ and λ₁), those of z0 by k_z."""
     best = None
@@ -87,7 +87,7 @@ def profiles_of(g: dict, variant: str):
         cov_sol = _with_pen(sol, pen)
     elif variant == "evidence":
         ke, kz = evidence_scales(sol, problem, lam)
-        g.setdefault("scales", (ke, kz))
+        print(f"    evidence scales: EI smoothness x{ke:g}, z0 smoothness x{kz:g}")
         pen = penalty(problem, lam * ke, l1=M._LAMBDA_1 * ke, lz=M._LAMBDA_Z * kz)
         smooth = B.smoothing_bias(sol, problem.penalty(lu))
         cov_sol = _with_pen(sol, pen)
