@@ -12,8 +12,9 @@ dip through the stone anywhere). All load cases of the bench are fitted at once:
   coefficients, ~50 mm knots by default; z0 without its linear part, which the bench cannot
   see, knots at the station spacing within 10-20 mm by default).
 * Data: profiles averaged over bins of ``bin_width`` (x̄, h̄, count n); σ_k the noise of each
-  load case from the scatter of its profile about local cubics (:mod:`skisnow.identify._noise`,
-  any station spacing); w the Huber weights of outlying bins (:mod:`skisnow.identify._robust`).
+  load case from the scatter about local cubics of its deviation from the other profiles at the
+  same stations, where the free camber cancels (:mod:`skisnow.identify._noise`, any station
+  spacing); w the Huber weights of outlying bins (:mod:`skisnow.identify._robust`).
 * Penalty P p - t: the smoothness of log EI (λ by GCV), a weak trend term, and a proper prior
   on the level of log EI and on z0 (:mod:`skisnow.identify._model`).
 * The fit (:mod:`skisnow.identify._fit`): a start from the load differences, the smoothed
