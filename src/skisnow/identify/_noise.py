@@ -11,16 +11,16 @@ robust to the few stations at contact points, at sharp stiffness steps and to ou
 **Across profiles** (issue 25, fourth pass). A loaded profile is the free camber z0(x) plus the
 beam's deflection; the deflection is a cubic between loads and contact points, z0 is not: a
 base's waviness of 15 µm on a 60 mm wavelength has fourth differences of ~16 µm at 20 mm
-stations, and a single profile's estimate read 8-17 µm for a true 5 µm there (measured on the
-independent reference bench, ``benchmarks/bench_noise_estimator.py``). Profiles measured at
+stations, and a single profile's estimate read 1.53 times the true noise there on average
+(up to 3.7 times; 12 skis of the independent reference bench × 20 noise seeds,
+``benchmarks/bench_noise_estimator.py``). Profiles measured at
 the same stations share z0 exactly, so the estimator is applied to each profile's deviation
 from the mean of its group (all load cases with the same stations): z0 cancels, what is left is
 a difference of smooth deflections and the noise. With m profiles of noise σ_k, the deviation of
 profile k has the variance v_k = σ_k² (1 - 2/m) + Σ_j σ_j² / m², a linear system solved for the
 σ_k² (m >= 3; m = 2 gives one σ² for both). A load case whose stations no other case shares
-keeps the single-profile estimator. Unbiased within 3 % at 2-20 mm stations on four skis of the
-reference bench, where the single-profile estimator is 2.2 times high at 20 mm
-(docs/validation/identification-uncertainty.md, "Fourth pass").
+keeps the single-profile estimator. Unbiased within 1 % at 2-20 mm stations on the same
+benches (docs/validation/identification-uncertainty.md, "Fourth pass").
 
 Per load case: each case's estimate is kept where it differs from the pooled one by more than
 three of its standard errors (a case measured by another sensor, on another day), else the
