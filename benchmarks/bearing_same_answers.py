@@ -43,14 +43,9 @@ def outputs() -> dict[str, np.ndarray]:
     res: dict[str, np.ndarray] = {}
     topo = lowpass(grind_preset("S3", size=1e-3, dx=1e-6))
     w0, c0 = time.perf_counter(), time.process_time()
-    sweep = bearing_sweep(
-        topo,
-        diameters=np.arange(450, 751, 10) * 1e-6,
-        pressure=20e3,
-        hardness=hard,
-        stride=1,
-        workers=2,
-    )
+    from bench_speed import BEARING_CASE
+
+    sweep = bearing_sweep(topo, hardness=hard, **BEARING_CASE)
     wall, cpu = time.perf_counter() - w0, time.process_time() - c0
     load = " ".join(f"{x:.2f}" for x in os.getloadavg())
     print(f"sweep (compile included): {wall:.1f} s wall, {cpu:.1f} s CPU, load {load}")

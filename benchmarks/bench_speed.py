@@ -256,16 +256,12 @@ def row_flexible(repeat: int) -> None:
     record("flexible / bare rigid (CPU, worst of 6)", f"{worst:.2f}", "<= 1.5", before)
 
 
-def row_sweep(runs: int = 3) -> None:
-    import tempfile
-    from pathlib import Path
+def figure89_spec():
+    """The Figure 8/9 sweep of the benchmark (skate, 126 masses × 20 moduli, beam profiles);
+    also used by ``sweep_phases.py``."""
+    from skisnow.sweep import SweepSpec
 
-    from distributed import Client
-
-    from skisnow.sweep import SweepSpec, run_sweep
-    from skisnow.sweep._run import local_cluster
-
-    spec = SweepSpec(
+    return SweepSpec(
         skis=("skate",),
         masses=np.arange(5.0, 131.0, 1.0),
         load_positions=(-0.120,),
@@ -274,6 +270,28 @@ def row_sweep(runs: int = 3) -> None:
         profile_source="beam",
         n_points=4096,
     )
+
+
+# the bearing row's sweep (31 grain sizes at stride 1, 2 threads) on the S3 grind, 1 mm², 1 µm
+# pixels at -2 °C; also used by ``bearing_same_answers.py``
+BEARING_CASE = {
+    "diameters": np.arange(450, 751, 10) * 1e-6,
+    "pressure": 20e3,
+    "stride": 1,
+    "workers": 2,
+}
+
+
+def row_sweep(runs: int = 3) -> None:
+    import tempfile
+    from pathlib import Path
+
+    from distributed import Client
+
+    from skisnow.sweep import run_sweep
+    from skisnow.sweep._run import local_cluster
+
+    spec = figure89_spec()
     before = load()
     times: dict[int, list[float]] = {1: [], 2: []}
     cpus: dict[int, list[tuple[list[float], float]]] = {1: [], 2: []}
@@ -402,14 +420,7 @@ def row_bearing() -> None:
     bearing_area(topo, diameter=600e-6, pressure=20e3, hardness=hard, stride=8)  # compile
     before = load()
     t0, c0 = time.perf_counter(), time.process_time()
-    sweep = bearing_sweep(
-        topo,
-        diameters=np.arange(450, 751, 10) * 1e-6,
-        pressure=20e3,
-        hardness=hard,
-        stride=1,
-        workers=2,
-    )
+    sweep = bearing_sweep(topo, hardness=hard, **BEARING_CASE)
     t, c = time.perf_counter() - t0, time.process_time() - c0
     record(
         "bearing model stride 1 (31 sizes, 2 threads)",

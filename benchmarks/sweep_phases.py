@@ -39,17 +39,10 @@ def load() -> str:
 
 
 def spec():
-    from skisnow.sweep import SweepSpec
+    """The benchmark's Figure 8/9 sweep (``bench_speed.figure89_spec``)."""
+    from bench_speed import figure89_spec
 
-    return SweepSpec(
-        skis=("skate",),
-        masses=np.arange(5.0, 131.0, 1.0),
-        load_positions=(-0.120,),
-        snow_moduli=np.arange(20.0, 401.0, 20.0) * 1e6,
-        model="strip",
-        profile_source="beam",
-        n_points=4096,
-    )
+    return figure89_spec()
 
 
 def _install_worker_timers() -> None:
