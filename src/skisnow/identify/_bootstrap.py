@@ -33,7 +33,11 @@ __all__ = ["bootstrap_bands"]
 
 def _simulated_bench(result: Any, bench: Any, label: str, seed: int) -> Any:
     """A bench of the identified ski at the stations of ``bench``'s profiles of ``label``,
-    with Gaussian noise of each load case's σ (seeded)."""
+    with Gaussian noise of each load case's σ (seeded).
+
+    Not :func:`skisnow.bench.run_bench`: the virtual bench samples every profile on one regular
+    grid with one noise level, while a replicate must keep the measured bench's own stations
+    (irregular, different per case) and each case's estimated σ."""
     import pandas as pd
 
     from skisnow.bench import BenchData
