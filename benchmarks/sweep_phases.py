@@ -51,6 +51,7 @@ def _install_worker_timers() -> None:
 
     import skisnow.sweep._point as point
     import skisnow.sweep._run as run
+    import skisnow.sweep._writer as writer
 
     log = []
 
@@ -71,17 +72,24 @@ def _install_worker_timers() -> None:
 
     point.loaded_profiles = timed("profiles", point.loaded_profiles)
     run._chunk_task = timed("chunk", run._chunk_task)
+    writer.ChunkWriter.write = timed("write", writer.ChunkWriter.write)
     run._PHASE_LOG = log
+    run._PHASE_THREADS = _thread_cpu()
 
 
 def _take_worker_log():
+    import threading
     import time as _t
 
     import skisnow.sweep._run as run
 
     log = list(run._PHASE_LOG)
     run._PHASE_LOG.clear()
-    return {"log": log, "cpu": _t.process_time()}
+    names = {t.native_id: t.name for t in threading.enumerate()}
+    now, before = _thread_cpu(), run._PHASE_THREADS
+    run._PHASE_THREADS = now
+    threads = {names.get(i, "?"): c - before.get(i, 0.0) for i, c in now.items()}
+    return {"log": log, "cpu": _t.process_time(), "threads": threads}
 
 
 def _thread_cpu() -> dict[int, float]:
@@ -93,13 +101,15 @@ def _replay(out: dict, spec, ski, position, modulus) -> dict:
     return {k: v.copy() for k, v in out.items()}
 
 
-def one_run(n: int, tmp: Path, tag: str, machinery: dict | None = None) -> dict:
+def one_run(
+    n: int, tmp: Path, tag: str, machinery: dict | None = None, worker_writes: bool | None = None
+) -> dict:
     import threading
 
     from distributed import Client
 
     import skisnow.sweep._run as runmod
-    import skisnow.sweep._store as store
+    import skisnow.sweep._writer as store
     from skisnow.sweep import run_sweep
     from skisnow.sweep._run import local_cluster
 
@@ -133,13 +143,16 @@ def one_run(n: int, tmp: Path, tag: str, machinery: dict | None = None) -> dict:
     th0, c0 = _thread_cpu(), time.process_time()
     try:
         if machinery is None:
-            r = run_sweep(s, tmp / f"{tag}.zarr", client=client)
+            r = run_sweep(s, tmp / f"{tag}.zarr", client=client, worker_writes=worker_writes)
         else:  # 20 tasks that cost nothing: Dask's and Zarr's CPU alone
             import functools
 
             fn = functools.partial(_replay, machinery)
             fn.__module__, fn.__qualname__ = __name__, "_replay"  # type: ignore[attr-defined]
-            r = run_sweep(s, tmp / f"{tag}.zarr", client=client, chunk_function=fn)
+            r = run_sweep(
+                s, tmp / f"{tag}.zarr", client=client, chunk_function=fn,
+                worker_writes=worker_writes,
+            )  # fmt: skip
     finally:
         store.ChunkWriter.write, runmod.prepare_store = orig_write, orig_prep
     th1, c1 = _thread_cpu(), time.process_time()
@@ -150,6 +163,7 @@ def one_run(n: int, tmp: Path, tag: str, machinery: dict | None = None) -> dict:
     cluster.close()
 
     out = {"n": n, "compute": r.compute_time, "startup": startup, "client": c1 - c0}
+    out["mode"] = {None: "default", True: "worker writes", False: "client writes"}[worker_writes]
     out["threads"] = sorted(
         ((names.get(i, str(i)), th1[i] - th0.get(i, 0.0)) for i in th1),
         key=lambda x: -x[1],
@@ -159,6 +173,7 @@ def one_run(n: int, tmp: Path, tag: str, machinery: dict | None = None) -> dict:
     for addr, d in logs.items():
         log = d["log"]
         prof = [c for k, c, _, _, _ in log if k == "profiles"]
+        wr = [c for k, c, _, _, _ in log if k == "write"]
         chunks = [c for k, c, _, _, _ in log if k == "chunk"]
         last = max(e for _, _, _, e, _ in log) if log else end
         first = min(s_ for _, _, s_, _, _ in log) if log else end
@@ -166,12 +181,14 @@ def one_run(n: int, tmp: Path, tag: str, machinery: dict | None = None) -> dict:
             {
                 "cpu": d["cpu"] - w0[addr],
                 "profiles": sum(prof),
+                "writes": sum(wr),
                 "n_chunks": len(chunks),
                 "chunks": sum(chunks),
                 "chunk_max": max(chunks, default=0.0),
                 "chunk_min": min(chunks, default=0.0),
                 "first_task_after_end": first - end,
                 "idle_tail": end - last,
+                "threads": d["threads"],
                 "by_chunk": [(key[2], c) for k, c, _, _, key in log if k == "chunk"],
             }
         )
@@ -180,17 +197,20 @@ def one_run(n: int, tmp: Path, tag: str, machinery: dict | None = None) -> dict:
 
 def show(o: dict) -> None:
     print(
-        f"  {o['n']} worker(s): compute {o['compute']:.2f} s (start-up {o['startup']:.2f} s "
-        f"before), load {load()}"
+        f"  {o['n']} worker(s), {o['mode']}: compute {o['compute']:.2f} s (start-up "
+        f"{o['startup']:.2f} s before), load {load()}"
     )
     for w in o["workers"]:
-        rest = w["cpu"] - w["profiles"] - w["chunks"]
+        rest = w["cpu"] - w["profiles"] - w["chunks"] - w["writes"]
         print(
             f"    worker: CPU {w['cpu']:.2f} s = profile part {w['profiles']:.3f} + "
             f"{w['n_chunks']} chunks {w['chunks']:.2f} (each {w['chunk_min']:.3f}-"
-            f"{w['chunk_max']:.3f}) + rest {rest:.3f}; idle tail {w['idle_tail']:.3f} s wall"
+            f"{w['chunk_max']:.3f}) + writes {w['writes']:.3f} + rest {rest:.3f}; idle tail "
+            f"{w['idle_tail']:.3f} s wall"
         )
         if DETAIL:
+            th = ", ".join(f"{k} {c:.3f}" for k, c in w["threads"].items() if c >= 0.005)
+            print(f"      by thread (since the previous run): {th}")
             print(
                 "      chunks (modulus index: CPU s, in order run): "
                 + ", ".join(f"{k}: {c:.3f}" for k, c in w["by_chunk"])
@@ -281,6 +301,12 @@ def main() -> None:
         help="the 20 chunks' CPU in one process against two processes at once (no Dask), "
         "and an FFT loop that fits in the cores' own caches as a control; then exit",
     )
+    ap.add_argument(
+        "--writes",
+        default="default",
+        help="who writes the chunks, alternated run by run: default (workers on a local "
+        "cluster), worker, client; e.g. client,worker",
+    )
     args = ap.parse_args()
     if args.concurrency:
         concurrency()
@@ -293,22 +319,26 @@ def main() -> None:
     global DETAIL
     DETAIL = args.detail
     ns = [int(v) for v in args.workers.split(",")]
+    modes = {"default": None, "worker": True, "client": False}
+    ms = [modes[m] for m in args.writes.split(",")]
     print(f"load {load()}")
-    res: dict[int, list[dict]] = {n: [] for n in ns}
+    res: dict[tuple[int, bool | None], list[dict]] = {(n, m): [] for n in ns for m in ms}
     with tempfile.TemporaryDirectory() as tmp:
         for r in range(args.runs):
             for n in ns:
-                o = one_run(n, Path(tmp), f"r{r}w{n}", machinery)
-                res[n].append(o)
-                show(o)
-    for n in ns:
-        c = [o["compute"] for o in res[n]]
-        w = [sum(x["cpu"] for x in o["workers"]) for o in res[n]]
-        cl = [o["client"] for o in res[n]]
+                for m in ms:
+                    o = one_run(n, Path(tmp), f"r{r}w{n}{m}", machinery, m)
+                    res[(n, m)].append(o)
+                    show(o)
+    for (n, _m), os_ in res.items():
+        c = [o["compute"] for o in os_]
+        w = [sum(x["cpu"] for x in o["workers"]) for o in os_]
+        cl = [o["client"] for o in os_]
         print(
-            f"{n} worker(s): compute median {statistics.median(c):.2f} s of {len(c)} "
-            f"({', '.join(f'{v:.2f}' for v in c)}); workers' CPU summed median "
-            f"{statistics.median(w):.2f} s; client CPU median {statistics.median(cl):.2f} s"
+            f"{n} worker(s), {os_[0]['mode']}: compute median {statistics.median(c):.2f} s of "
+            f"{len(c)} ({', '.join(f'{v:.2f}' for v in c)}); workers' CPU summed median "
+            f"{statistics.median(w):.2f} s; client CPU median {statistics.median(cl):.2f} s; "
+            f"workers + client {statistics.median(a + b for a, b in zip(w, cl, strict=True)):.2f} s"
         )
     print(f"load {load()}")
 

@@ -220,7 +220,7 @@ def test_profile_only_variables_hold_the_last_chunk_written(tmp_path: Path) -> N
     # earlier write ended before that chunk's marker), and writes values that differ: the store
     # ends as if every chunk had written them, whatever the order the chunks arrive in.
     from skisnow.sweep._run import prepare_store
-    from skisnow.sweep._store import ChunkWriter
+    from skisnow.sweep._writer import ChunkWriter
 
     spec = _spec()
     path = tmp_path / "p.zarr"

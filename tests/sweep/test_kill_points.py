@@ -1,11 +1,11 @@
 """Resuming after a kill at ANY write yields the store of an uninterrupted run.
 
-A hook in the writer (zarr's LocalStore, the only thing that writes a sweep store's files) stops
-the sweep right after its k-th file write, as a SIGKILL would (no clean-up runs), for every k of
-a small two-chunk sweep, including every write of the store's creation; the same sweep is then
-run again. Every kill point must end with the dataset of an uninterrupted run, and no finished
-chunk may be recomputed. A second sweep on a locked store is refused; a NetCDF export killed
-midway leaves no file.
+A hook in the writers (zarr's LocalStore, which creates the store, and the chunk files' writer:
+the only things that write a sweep store's files) stops the sweep right after its k-th file
+write, as a SIGKILL would (no clean-up runs), for every k of a small two-chunk sweep, including
+every write of the store's creation; the same sweep is then run again. Every kill point must end
+with the dataset of an uninterrupted run, and no finished chunk may be recomputed. A second sweep
+on a locked store is refused; a NetCDF export killed midway leaves no file.
 """
 
 from __future__ import annotations
@@ -19,6 +19,7 @@ from skisnow import SkisnowError
 from skisnow._atomic import temporary_siblings
 from skisnow.sweep import VARIABLES, SweepSpec, open_sweep, run_sweep, save_netcdf
 from skisnow.sweep._store import StoreLock
+from skisnow.sweep._zarr_io import ChunkFiles
 
 
 class Killed(Exception):
@@ -62,7 +63,8 @@ def kill_after(monkeypatch):
     """``kill_after(k)`` arms the hook: the k-th file write of the store completes, then
     :class:`Killed` is raised; returns a counter dict whose ``"n"`` counts writes."""
     original = zarr.storage.LocalStore._set
-    state = {"n": 0, "k": None, "dead": False}
+    original_chunk = ChunkFiles.write
+    state = {"n": 0, "k": None, "dead": False, "chunk_files": 0}
 
     async def _set(self, key, value, exclusive=False):
         if state["dead"]:  # a killed process writes nothing more (zarr's other pending writes)
@@ -73,12 +75,23 @@ def kill_after(monkeypatch):
             state["dead"] = True
             raise Killed(f"killed after write {state['n']} ({key})")
 
+    def write(self, name, index, value):  # one chunk file replaced (or an empty one removed)
+        if state["dead"]:
+            raise Killed(f"write of {name} after the kill")
+        original_chunk(self, name, index, value)
+        state["n"] += 1
+        state["chunk_files"] += 1
+        if state["k"] is not None and state["n"] == state["k"]:
+            state["dead"] = True
+            raise Killed(f"killed after write {state['n']} ({name} {index})")
+
     monkeypatch.setattr(zarr.storage.LocalStore, "_set", _set)
+    monkeypatch.setattr(ChunkFiles, "write", write)
 
     def arm(k: int | None) -> dict:
         if state["dead"]:  # a SIGKILL stops every write in flight: let the killed run's
             _drain_zarr_loop()  # remaining writes fail (dead) before the next run may write
-        state.update(n=0, k=k, dead=False)
+        state.update(n=0, k=k, dead=False, chunk_files=0)
         return state
 
     return arm
@@ -92,6 +105,7 @@ def test_every_kill_point_resumes_to_the_uninterrupted_store(tmp_path, kill_afte
     n_writes = count["n"]
     expected = open_sweep(reference)
     assert n_writes > 20  # creation (metadata, coordinates) and two chunks of 12 arrays
+    assert count["chunk_files"] >= 2 * 10  # the chunks' own files (two profile-only skipped)
     killed_with_temporaries = 0
     for k in range(1, n_writes + 1):
         store = tmp_path / f"k{k}.zarr"

@@ -1,10 +1,11 @@
 """Running a sweep on Dask, chunk by chunk into a Zarr store, resumable after any interruption.
 
-The client (this process) owns the store: workers only compute a chunk and return its small result
-arrays; the client writes each result with ``to_zarr(region=...)`` as soon as it arrives and then
-sets the chunk's completion marker. So the same code runs on a local cluster and on a remote
-``dask.distributed`` cluster that shares no file system with this machine, and no two writers ever
-race on the store.
+The client (this process) creates the store and holds its lock for the run. On a local cluster
+each worker writes the chunks it computes into their own Zarr chunks of the store, then the
+chunk's completion marker, and sends nothing back but the chunk's key; on a remote
+``dask.distributed`` cluster, which may share no file system with this machine, workers return
+each chunk's small result arrays and the client writes them as they arrive. Either way a Zarr
+chunk belongs to one task, so no two writers ever race on a file.
 """
 
 from __future__ import annotations
@@ -22,13 +23,13 @@ from skisnow._parallel import default_workers
 from skisnow.sweep._grid import SweepSpec
 from skisnow.sweep._store import (
     SPEC_ATTR,
-    ChunkWriter,
     StoreLock,
     check_same_sweep,
     check_skeleton,
     create_store,
     done_chunks,
 )
+from skisnow.sweep._writer import ChunkWriter, run_writer
 
 #: A chunk function computes one chunk: (spec, ski name, load position [m], snow modulus [Pa]) ->
 #: {variable: array of shape (n_mass, n_zone) or (n_mass,)} (see ``skisnow.sweep.VARIABLES``).
@@ -68,6 +69,30 @@ def _chunk_task(
     args = (spec, spec.skis[i], spec.load_positions[j], spec.snow_moduli[k])
     out = fn(*args) if shared is None else fn(*args, shared)  # type: ignore[call-arg]
     return key, {name: np.asarray(v) for name, v in out.items()}
+
+
+def _chunk_store_task(
+    fn: ChunkFunction,
+    spec: SweepSpec,
+    key: tuple[int, int, int],
+    shared: Any,
+    path: str,
+    token: str,
+) -> tuple[int, int, int]:
+    """A worker's task when workers write: compute the chunk, write it into the store (data,
+    then marker) and return only its key."""
+    key, values = _chunk_task(fn, spec, key, shared)
+    run_writer(path, spec, token).write(key, values)
+    return key
+
+
+def _writes_on_workers(client: Any, own_cluster: Any) -> bool:
+    """Whether the workers share this machine's file system: a local cluster's do."""
+    if own_cluster is not None:
+        return True
+    from distributed import LocalCluster
+
+    return isinstance(getattr(client, "cluster", None), LocalCluster)
 
 
 def _flat(items: Any) -> list[Any]:
@@ -149,6 +174,8 @@ PRELOAD = (
     "threadpoolctl",
     "skisnow.ski",
     "skisnow.sweep._warm",  # one solve: the chunk's imports and the numba kernels' cache loaded
+    "numcodecs",  # the chunks' compressor: workers write their chunks (~0.1 s a worker otherwise)
+    "skisnow.sweep._writer",
 )
 
 
@@ -219,6 +246,7 @@ def run_sweep(
     retries: int = 2,
     on_progress: ProgressCallback | None = None,
     shared_function: Callable[[SweepSpec, str, float], Any] | None = None,
+    worker_writes: bool | None = None,
 ) -> SweepRun:
     """Compute the chunks of ``spec`` that are missing from the Zarr store at ``path``.
 
@@ -251,6 +279,11 @@ def run_sweep(
             which only solve contacts; beam profiles are computed by the workers instead, in
             one part of the masses per worker (:func:`skisnow.sweep._point.split_profiles`),
             so that nothing serial precedes the chunks.
+        worker_writes: whether the Dask workers write their chunks into the store themselves
+            (no result is sent back; the client only waits) instead of returning them to this
+            process, which writes them. Default: on a local cluster (the store's file system
+            is theirs), not on a remote one. Set it for a remote cluster whose workers see the
+            store at the same path. Ignored with ``workers=0``.
     """
     split = False
     if chunk_function is None:
@@ -264,12 +297,17 @@ def run_sweep(
         raise InputError(f"workers: need >= 0, got {workers}")
     if retries < 0:
         raise InputError(f"retries: need >= 0, got {retries}")
-    # One sweep per store at a time: a second one is refused with a clear message.
-    with StoreLock(Path(path)):
+    import uuid
+
+    # One sweep per store at a time: a second one is refused with a clear message. The run's
+    # token in the lock file tells the workers' writers that the store is still this run's.
+    token = uuid.uuid4().hex
+    with StoreLock(Path(path), token=token):
         return _run_locked(
             spec, Path(path), chunk_function=chunk_function, scheduler=scheduler,
             workers=workers, client=client, retries=retries, on_progress=on_progress,
-            shared_function=shared_function, split=split,
+            shared_function=shared_function, split=split, worker_writes=worker_writes,
+            token=token,
         )  # fmt: skip
 
 
@@ -285,6 +323,8 @@ def _run_locked(
     on_progress: ProgressCallback | None,
     shared_function: Callable[[SweepSpec, str, float], Any] | None,
     split: bool = False,
+    worker_writes: bool | None = None,
+    token: str = "",
 ) -> SweepRun:
     t0 = time.perf_counter()
     done = prepare_store(path, spec, chunk_function)
@@ -294,14 +334,17 @@ def _run_locked(
 
     writer: ChunkWriter | None = None
 
+    def _done(key: tuple[int, int, int]) -> None:
+        computed.append(key)
+        if on_progress is not None:
+            on_progress(len(computed), len(todo), key)
+
     def _record(key: tuple[int, int, int], values: Mapping[str, np.ndarray]) -> None:
         nonlocal writer
         if writer is None:
             writer = ChunkWriter(path, spec)
         writer.write(key, values)
-        computed.append(key)
-        if on_progress is not None:
-            on_progress(len(computed), len(todo), key)
+        _done(key)
 
     if not todo:
         wall = time.perf_counter() - t0
@@ -342,6 +385,10 @@ def _run_locked(
             client = own_client
         n_workers = len(client.scheduler_info(n_workers=-1).get("workers", {}))
         n_parts = max(n_workers, 1)  # shared data split in one part per worker
+        if worker_writes is None:
+            worker_writes = _writes_on_workers(client, own_cluster)
+        where = (str(path.resolve()), token) if worker_writes else ()
+        keys: dict[str, tuple[int, int, int]] = {}
         t1 = time.perf_counter()
         futures = []
         shared_futures: dict[tuple[int, int], Any] = {}
@@ -376,21 +423,26 @@ def _run_locked(
                 shared = shared_futures[key[:2]]
             futures.append(
                 client.submit(
-                    _chunk_task,
+                    _chunk_store_task if worker_writes else _chunk_task,
                     chunk_function,
                     spec,
                     key,
                     shared,
+                    *where,
                     key=f"skisnow-chunk-{path.name}-{key[0]}-{key[1]}-{key[2]}-{time.time_ns()}",
                     retries=retries,
                     pure=False,
                     priority=len(todo) - rank,
                 )
             )
+            keys[futures[-1].key] = key
         from distributed import as_completed
 
         try:
             for future in as_completed(futures):
+                if worker_writes and future.status == "finished":
+                    _done(keys[future.key])  # written by its worker: nothing to fetch
+                    continue
                 try:
                     key, values = future.result()
                 except SkisnowError:

@@ -18,7 +18,8 @@ in zarr-python 3.x, which warns):
   still treats an unreadable marker as "not done", for stores without that guarantee.)
 
 The store is created from a template with ``Dataset.to_zarr(compute=False)`` (metadata and
-coordinates only); each chunk is then written into its Zarr chunks (:class:`ChunkWriter`). The
+coordinates only); each chunk is then written into its Zarr chunks
+(:class:`skisnow.sweep._writer.ChunkWriter`). The
 Zarr chunking equals the task chunking (one ski × one position × one modulus × all masses), so no
 two tasks ever touch the same Zarr chunk.
 """
@@ -34,7 +35,6 @@ import numpy as np
 
 from skisnow._errors import FileFormatError, InputError, SkisnowError
 from skisnow.sweep._grid import SweepSpec
-from skisnow.sweep._zarr_io import write_all
 
 if TYPE_CHECKING:  # xarray is imported lazily: the store functions pay for it, not the package
     import xarray as xr
@@ -237,8 +237,9 @@ class StoreLock:
     platforms without ``fcntl`` the lock is skipped).
     """
 
-    def __init__(self, path: str | Path) -> None:
+    def __init__(self, path: str | Path, *, token: str | None = None) -> None:
         self.path = Path(path)
+        self.token = token  # the run's token, on the file's second line (workers check it)
         self._fd: int | None = None
 
     def __enter__(self) -> StoreLock:
@@ -254,7 +255,7 @@ class StoreLock:
         try:
             fcntl.flock(fd, fcntl.LOCK_EX | fcntl.LOCK_NB)
         except BlockingIOError:
-            holder = os.pread(fd, 64, 0).decode("ascii", "replace").strip() or "?"
+            holder = (os.pread(fd, 64, 0).decode("ascii", "replace").split() or ["?"])[0]
             os.close(fd)
             raise SkisnowError(
                 f"{self.path} is being written by another skisnow sweep (process {holder}); "
@@ -262,7 +263,7 @@ class StoreLock:
                 "store), or choose another --out"
             ) from None
         os.ftruncate(fd, 0)
-        os.pwrite(fd, str(os.getpid()).encode("ascii"), 0)
+        os.pwrite(fd, f"{os.getpid()}\n{self.token or ''}\n".encode("ascii"), 0)
         self._fd = fd
         return self
 
@@ -379,79 +380,6 @@ def done_chunks(path: Path, spec: SweepSpec) -> set[tuple[int, int, int]]:
             except Exception:
                 flags[key] = 0
     return {key for key in spec.chunks() if flags[key] == 1}
-
-
-def _same(a: np.ndarray, b: np.ndarray) -> bool:
-    """Whether two arrays hold the same values (NaN equal to NaN)."""
-    return bool(np.array_equal(a, b, equal_nan=a.dtype.kind in "fc"))
-
-
-class ChunkWriter:
-    """Writes chunks into an existing store: each chunk's data, THEN its completion marker.
-
-    The store's arrays are opened once and written with plain Zarr indexing (one Zarr chunk per
-    variable): measured 18 ms a chunk against 65 ms for ``Dataset.to_zarr(region=...)``, whose
-    metadata round-trips otherwise cost the client about 1.3 s of CPU per Figure 8/9 sweep,
-    taken from the workers on a 2-core machine.
-    """
-
-    def __init__(self, path: str | Path, spec: SweepSpec) -> None:
-        import zarr
-
-        self.path = Path(path)
-        self.spec = spec
-        group = zarr.open_group(str(self.path), mode="r+")
-        self._variables = variables(spec)
-        self._shapes = chunk_shapes(spec)
-        self._arrays = {name: group[name] for name in self._variables}
-        self._marker = group["chunk_done"]
-        # profile-only variables this writer has written completely, by (ski, position)
-        self._profiles_written: dict[tuple[int, int], dict[str, np.ndarray]] = {}
-
-    def write(self, key: tuple[int, int, int], values: Mapping[str, np.ndarray]) -> None:
-        """Write the chunk ``key`` = (ski, position, modulus) indices from a chunk function's
-        result (validated first: nothing is written if any variable is missing or misshapen)."""
-        i, j, k = key
-        data = {}
-        for name, var in self._variables.items():
-            if name not in values:
-                raise InputError(
-                    f"chunk function returned no {name!r} (needs {sorted(self._variables)})"
-                )
-            want = self._shapes[name]
-            arr = np.asarray(values[name]).astype(var.dtype)
-            if arr.shape != want:
-                raise InputError(
-                    f"chunk function returned {name!r} of shape {arr.shape}, need {want}"
-                )
-            data[name] = arr
-        where = {"ski": i, "load_position_mm": j, "snow_modulus_mpa": k}
-        # The profile-only variables (no snow_modulus_mpa dim) are the same for every modulus
-        # of this (ski, position): each chunk writes them (idempotent; zarr's LocalStore
-        # replaces each chunk file atomically, so a kill never leaves a torn file), except
-        # where this writer has already written the very same values for an earlier chunk of
-        # the (ski, position): that write ended before the earlier chunk's marker, so every
-        # chunk with a marker has them on disk (2 of the 11 files of a Figure 8/9 chunk).
-        written = self._profiles_written.get((i, j), {})
-        writes = [
-            (self._arrays[name], tuple(where.get(d, slice(None)) for d in var.dims), data[name])
-            for name, var in self._variables.items()
-            if "snow_modulus_mpa" in var.dims
-            or not (name in written and _same(written[name], data[name]))
-        ]
-        write_all(writes)
-        self._profiles_written[(i, j)] = {
-            name: data[name] for name, var in self._variables.items()
-            if "snow_modulus_mpa" not in var.dims
-        }  # fmt: skip
-        self._marker[i, j, k] = 1  # only once every variable is written
-
-
-def write_chunk(
-    path: Path, spec: SweepSpec, key: tuple[int, int, int], values: Mapping[str, np.ndarray]
-) -> None:
-    """Write one chunk's data, THEN its completion marker (see :class:`ChunkWriter`)."""
-    ChunkWriter(path, spec).write(key, values)
 
 
 def open_sweep(path: str | Path, *, require_complete: bool = True) -> xr.Dataset:
