@@ -51,7 +51,11 @@ def _install_worker_timers() -> None:
 
     import skisnow.sweep._point as point
     import skisnow.sweep._run as run
-    import skisnow.sweep._writer as writer
+
+    try:
+        import skisnow.sweep._writer as writer
+    except ImportError:  # main before the fifth pass: the writer was in _store
+        import skisnow.sweep._store as writer
 
     log = []
 
@@ -109,7 +113,11 @@ def one_run(
     from distributed import Client
 
     import skisnow.sweep._run as runmod
-    import skisnow.sweep._writer as store
+
+    try:
+        import skisnow.sweep._writer as store
+    except ImportError:  # main before the fifth pass
+        import skisnow.sweep._store as store
     from skisnow.sweep import run_sweep
     from skisnow.sweep._run import local_cluster
 
@@ -143,16 +151,15 @@ def one_run(
     th0, c0 = _thread_cpu(), time.process_time()
     try:
         if machinery is None:
-            r = run_sweep(s, tmp / f"{tag}.zarr", client=client, worker_writes=worker_writes)
+            kw = {} if worker_writes is None else {"worker_writes": worker_writes}
+            r = run_sweep(s, tmp / f"{tag}.zarr", client=client, **kw)
         else:  # 20 tasks that cost nothing: Dask's and Zarr's CPU alone
             import functools
 
             fn = functools.partial(_replay, machinery)
             fn.__module__, fn.__qualname__ = __name__, "_replay"  # type: ignore[attr-defined]
-            r = run_sweep(
-                s, tmp / f"{tag}.zarr", client=client, chunk_function=fn,
-                worker_writes=worker_writes,
-            )  # fmt: skip
+            kw = {} if worker_writes is None else {"worker_writes": worker_writes}
+            r = run_sweep(s, tmp / f"{tag}.zarr", client=client, chunk_function=fn, **kw)
     finally:
         store.ChunkWriter.write, runmod.prepare_store = orig_write, orig_prep
     th1, c1 = _thread_cpu(), time.process_time()
