@@ -9,12 +9,18 @@ stations) on a local cluster of 1 and 2 worker processes. Timers are installed o
 and in the client around the store's creation and each chunk's write. Printed per run:
 
 * each worker: process CPU during the run, and within it the CPU of each task kind (profile
-  parts, chunks; the chunks' longest and shortest), the rest being the worker's own event loop
-  (receiving tasks, sending results, heartbeats) and its idle tail (wall);
-* the client process: CPU by thread (main thread: submission, gathering, writes; the event-loop
-  thread: the scheduler, the nannies and the client's communication; Zarr's I/O thread and the
-  threads it writes files from), and the writes;
+  parts, chunks; the chunks' longest and shortest; its writes of its own chunks), the rest
+  being the worker's own event loop (receiving tasks, sending results, heartbeats), with the
+  garbage collector's share, and its idle tail (wall); ``--detail``: CPU by thread and by chunk;
+* the client process: CPU by thread (main thread: submission, waiting, writes where the client
+  writes; the event-loop thread: the scheduler, the nannies and the client's communication;
+  Zarr's I/O thread and the threads it writes files from: the store's creation), the writes and
+  the garbage collector;
 * the compute time and, per worker, when it finished its last task (its idle tail).
+
+``--writes client,worker`` alternates who writes the chunks (``run_sweep(worker_writes=...)``);
+``PYTHONPATH=<main checkout>/src`` runs it on another checkout (before the fifth pass: the
+client writes).
 
 Every CPU figure is load-independent to first order; wall times are printed with the load.
 """
@@ -79,6 +85,7 @@ def _install_worker_timers() -> None:
     writer.ChunkWriter.write = timed("write", writer.ChunkWriter.write)
     run._PHASE_LOG = log
     run._PHASE_THREADS = _thread_cpu()
+    _gc_take()
 
 
 def _take_worker_log():
@@ -93,7 +100,34 @@ def _take_worker_log():
     now, before = _thread_cpu(), run._PHASE_THREADS
     run._PHASE_THREADS = now
     threads = {names.get(i, "?"): c - before.get(i, 0.0) for i, c in now.items()}
-    return {"log": log, "cpu": _t.process_time(), "threads": threads}
+    return {"log": log, "cpu": _t.process_time(), "threads": threads, "gc": _gc_take()}
+
+
+def _gc_timer() -> dict:
+    """Time the garbage collector's passes in this process (``gc.callbacks``): CPU of all
+    passes and the number of full (generation 2) ones since the last :func:`_gc_take`."""
+    import gc
+
+    state = getattr(gc, "_sweep_phases", None)
+    if state is None:
+        state = gc._sweep_phases = {"cpu": 0.0, "full": 0, "t0": 0.0}
+
+        def cb(phase, info):
+            if phase == "start":
+                state["t0"] = time.thread_time()
+            else:
+                state["cpu"] += time.thread_time() - state["t0"]
+                state["full"] += info["generation"] == 2
+
+        gc.callbacks.append(cb)
+    return state
+
+
+def _gc_take() -> tuple[float, int]:
+    state = _gc_timer()
+    out = (state["cpu"], state["full"])
+    state["cpu"], state["full"] = 0.0, 0
+    return out
 
 
 def _thread_cpu() -> dict[int, float]:
@@ -148,6 +182,7 @@ def one_run(
     store.ChunkWriter.write, runmod.prepare_store = write, prepare
     names = {t.native_id: t.name for t in threading.enumerate()}
     w0 = client.run(time.process_time)
+    _gc_take()
     th0, c0 = _thread_cpu(), time.process_time()
     try:
         if machinery is None:
@@ -163,6 +198,7 @@ def one_run(
     finally:
         store.ChunkWriter.write, runmod.prepare_store = orig_write, orig_prep
     th1, c1 = _thread_cpu(), time.process_time()
+    gc_client = _gc_take()
     end = time.time()
     logs = client.run(_take_worker_log)
     names.update({t.native_id: t.name for t in threading.enumerate()})
@@ -171,6 +207,7 @@ def one_run(
 
     out = {"n": n, "compute": r.compute_time, "startup": startup, "client": c1 - c0}
     out["mode"] = {None: "default", True: "worker writes", False: "client writes"}[worker_writes]
+    out["gc"] = gc_client
     out["threads"] = sorted(
         ((names.get(i, str(i)), th1[i] - th0.get(i, 0.0)) for i in th1),
         key=lambda x: -x[1],
@@ -196,6 +233,7 @@ def one_run(
                 "first_task_after_end": first - end,
                 "idle_tail": end - last,
                 "threads": d["threads"],
+                "gc": d["gc"],
                 "by_chunk": [(key[2], c) for k, c, _, _, key in log if k == "chunk"],
             }
         )
@@ -212,8 +250,9 @@ def show(o: dict) -> None:
         print(
             f"    worker: CPU {w['cpu']:.2f} s = profile part {w['profiles']:.3f} + "
             f"{w['n_chunks']} chunks {w['chunks']:.2f} (each {w['chunk_min']:.3f}-"
-            f"{w['chunk_max']:.3f}) + writes {w['writes']:.3f} + rest {rest:.3f}; idle tail "
-            f"{w['idle_tail']:.3f} s wall"
+            f"{w['chunk_max']:.3f}) + writes {w['writes']:.3f} + rest {rest:.3f} (garbage "
+            f"collector {w['gc'][0]:.3f}, {w['gc'][1]} full); idle tail {w['idle_tail']:.3f} s "
+            "wall"
         )
         if DETAIL:
             th = ", ".join(f"{k} {c:.3f}" for k, c in w["threads"].items() if c >= 0.005)
@@ -225,7 +264,8 @@ def show(o: dict) -> None:
     th = ", ".join(f"{name} {c:.3f}" for name, c in o["threads"] if c >= 0.005)
     print(
         f"    client: CPU {o['client']:.2f} s (store creation {o['prep']:.3f}, writes "
-        f"{o['writes']:.3f}); by thread: {th}"
+        f"{o['writes']:.3f}; garbage collector {o['gc'][0]:.3f}, {o['gc'][1]} full); by "
+        f"thread: {th}"
     )
 
 
