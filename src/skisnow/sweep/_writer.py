@@ -74,6 +74,8 @@ class ChunkWriter:
             return
         try:
             held = lock_path(self.path).read_text(encoding="ascii").split()
+        except FileNotFoundError:  # no lock file: a platform without flock (StoreLock)
+            return
         except OSError:
             held = []
         if held[1:2] != [self.token]:
