@@ -271,8 +271,14 @@ def _write_reproduction(doc: dict, path: Path) -> Path:
     # (its own method and data lines): a record per kind of ski, not shared logic
     provenance = Provenance(
         method="calibrated: reproduction ski, a spline ski fitted to the captions of "
-        "Kalliorinne et al. (2023), Figs. 4-7, alone (skisnow calibrate --reproduction: "
-        "differential evolution, then least squares)",
+        "Kalliorinne et al. (2023), Figs. 4-7, alone ("
+        + (
+            f"{doc['fit']}: differential evolution, then Powell, on the tolerances as a hinge "
+            f"penalty, margin {doc.get('margin')}"
+            if doc.get("fit")
+            else "skisnow calibrate --reproduction: differential evolution, then least squares"
+        )
+        + ")",
         data="the caption numbers of Figs. 4-7 (skisnow.paper.CAPTIONS) and the shares Figs. 4 "
         "and 7 imply, through the paper's pipeline on the beam route (beam on the rigid plane, "
         "rigid profile, strip half-space, E_base 900 MPa, nu 0.3); no plausibility limits",
