@@ -304,8 +304,8 @@ def _bearing_kernel(
             t_j = np.empty(nc, np.int64)
             t_h = np.empty(nc)
             t_w = np.empty(nc)
-            band = np.empty(2 * nc)
-            band_w = np.empty(2 * nc)
+            band = np.empty(3 * nc)  # the band and two scratch copies for its selection
+            band_w = np.empty(nc)
             # chunks: at most one per candidate plus one per row of the window
             size_ch = nc + (i1 - i0) + 1
             ch_i = np.empty(size_ch, np.int64)
@@ -393,7 +393,7 @@ def _bearing_kernel(
                     for c in range(nch):
                         n_span += ch_j1[c] - ch_j0[c]
                     if band_w.size < n_span:
-                        band = np.empty(2 * n_span)
+                        band = np.empty(3 * n_span)
                         band_w = np.empty(n_span)
                     # step 3: exact selection for every position of the tile
                     seed[0] = -1

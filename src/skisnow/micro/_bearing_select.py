@@ -11,7 +11,7 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-__all__ = ["_band_select", "_kth_largest_inplace"]
+__all__ = ["_band_select", "_kth_largest_bf", "_kth_largest_inplace"]
 
 #: an unsigned index type: numba skips the wraparound of negative indices for it
 u8 = np.uint64
@@ -45,6 +45,43 @@ def _kth_largest_inplace(a: np.ndarray, m: int, k: int) -> float:  # pragma: no 
         if t < i:
             hi = j
     return a[t]
+
+
+@numba.njit(cache=True, nogil=True)
+def _kth_largest_bf(a: np.ndarray, m: int, k: int, s1: int, s2: int) -> float:  # pragma: no cover - jit
+    """The k-th largest of a[:m] (k = 1: the maximum), a[:m] left as it is; a[s1 : s1 + m] and
+    a[s2 : s2 + m] are scratch (disjoint from a[:m] and from each other).
+
+    Quickselect with a branch-free partition: each round copies its elements into the next
+    scratch, those above the pivot packed from the front and those below from the back (every
+    element stored at both ends, the counters advanced by the comparisons), so the data-dependent
+    branches of Wirth's partition — mispredicted about every other element of a band of a few
+    dozen — are gone. The value returned is the k-th largest whatever the algorithm."""
+    src = 0
+    dst = s1
+    nxt = s2
+    while True:
+        x = a[u8(src + (m >> 1))]
+        i = dst
+        j = dst + m - 1
+        for e in range(src, src + m):
+            v = a[u8(e)]
+            a[u8(i)] = v
+            a[u8(j)] = v
+            i += v > x
+            j -= v < x
+        ng = i - dst
+        nl = dst + m - 1 - j
+        if k <= ng:
+            src = dst
+            m = ng
+        elif k <= m - nl:
+            return x
+        else:
+            k -= m - nl
+            src = j + 1
+            m = nl
+        dst, nxt = nxt, dst
 
 
 @numba.njit(cache=True, nogil=True)
@@ -141,9 +178,7 @@ def _band_select(
                     z_hi = v
                     seed[0] = c
                     seed[1] = t
-    scratch = band[kb : 2 * kb]
-    scratch[:] = band[:kb]
-    fn1 = _kth_largest_inplace(scratch, kb, n + 1 - khi)
+    fn1 = _kth_largest_bf(band, kb, n + 1 - khi, kb, 2 * kb)
     cnt = khi
     wsum = w_hi
     fmin = fmin_hi
