@@ -61,7 +61,7 @@ import math
 import numba
 import numpy as np
 
-from skisnow.micro._bearing_select import _band_select, _kth_largest_inplace
+from skisnow.micro._bearing_select import _band_select, _kth_largest
 
 __all__ = ["bearing_search", "block_max", "sag"]
 
@@ -234,7 +234,7 @@ def _bearing_kernel(
             j0 = p0j - uy
             j1 = p1j + uy + 1
             size = (i1 - i0) * (j1 - j0)
-            buf = np.empty(size)
+            buf = np.empty(3 * size)  # (and two scratch copies for the selections)
             # a first lower bound L0 of τ from the core (the super-tile grown by uci, ucj,
             # which holds more than N*+1 pixels); the window's (N*+1)-th largest lower bound
             # is ≥ L0, so only the window pixels with a lower bound ≥ L0 enter the selection
@@ -245,7 +245,7 @@ def _bearing_kernel(
                     dmj = max(abs(j - p0j), abs(j - p1j))
                     buf[k] = h[u8(i), u8(j)] - table[u8(dmi), u8(dmj)]
                     k += 1
-            low0 = _kth_largest_inplace(buf, k, n + 1)
+            low0 = _kth_largest(buf, k, n + 1, k, 2 * k)
             # a pixel a rows beyond the super-tile has F ≤ max h − s(a·dx) for all its
             # positions: the window shrinks to the rows and columns where that reaches L0
             ra = 0
@@ -276,7 +276,7 @@ def _bearing_kernel(
                         v = h[u8(i), u8(j)] - table[u8(dmi), u8(dmj)]
                         buf[k] = v
                         k += v >= low0
-            tau = _kth_largest_inplace(buf, k, n + 1)
+            tau = _kth_largest(buf, k, n + 1, k, 2 * k)
             c_i = np.empty(size, np.int64)
             c_j = np.empty(size, np.int64)
             c_h = np.empty(size)
@@ -299,7 +299,7 @@ def _bearing_kernel(
                             c_h[nc] = hv
                             c_w[nc] = w[u8(i), u8(j)]
                             nc += 1
-            low = np.empty(nc)
+            low = np.empty(3 * nc)
             t_i = np.empty(nc, np.int64)
             t_j = np.empty(nc, np.int64)
             t_h = np.empty(nc)
@@ -341,7 +341,7 @@ def _bearing_kernel(
                         v = c_h[c] - table[u8(dmi), u8(dmj)]
                         low[kl] = v
                         kl += v >= tau
-                    tau_t = _kth_largest_inplace(low, kl, n + 1)
+                    tau_t = _kth_largest(low, kl, n + 1, kl, 2 * kl)
                     m = 0
                     for c in range(nc):
                         gi = c_i[c]

@@ -1,7 +1,7 @@
 """The selections of the bearing model's compiled search (:mod:`skisnow.micro._bearing_kernel`).
 
 Step 3 of that search for one position (Scherge et al. 2021, eq. 5–7): the threshold F of the
-(⌊N*⌋+1)-th largest pixel by an in-place selection, from one pass over the tile's candidates
+(⌊N*⌋+1)-th largest pixel by a branch-free selection, from one pass over the tile's candidates
 that counts the pixels above a bracket and gathers the band inside it. In a module of its own
 (numba, GIL released) so that the kernel's module stays readable.
 """
@@ -11,52 +11,24 @@ from __future__ import annotations
 import numba
 import numpy as np
 
-__all__ = ["_band_select", "_kth_largest_bf", "_kth_largest_inplace"]
+__all__ = ["_band_select", "_kth_largest"]
 
 #: an unsigned index type: numba skips the wraparound of negative indices for it
 u8 = np.uint64
 
 
 @numba.njit(cache=True, nogil=True)
-def _kth_largest_inplace(a: np.ndarray, m: int, k: int) -> float:  # pragma: no cover - jit
-    """The k-th largest of a[:m] (k = 1: the maximum); reorders a[:m] (Wirth's selection)."""
-    t = m - k  # index of the answer in ascending order
-    lo = 0
-    hi = m - 1
-    while lo < hi:
-        x = a[t]
-        i = lo
-        j = hi
-        while True:
-            while a[i] < x:
-                i += 1
-            while x < a[j]:
-                j -= 1
-            if i <= j:
-                tmp = a[i]
-                a[i] = a[j]
-                a[j] = tmp
-                i += 1
-                j -= 1
-            if i > j:
-                break
-        if j < t:
-            lo = i
-        if t < i:
-            hi = j
-    return a[t]
-
-
-@numba.njit(cache=True, nogil=True)
-def _kth_largest_bf(a: np.ndarray, m: int, k: int, s1: int, s2: int) -> float:  # pragma: no cover - jit
+def _kth_largest(
+    a: np.ndarray, m: int, k: int, s1: int, s2: int
+) -> float:  # pragma: no cover - jit
     """The k-th largest of a[:m] (k = 1: the maximum), a[:m] left as it is; a[s1 : s1 + m] and
     a[s2 : s2 + m] are scratch (disjoint from a[:m] and from each other).
 
     Quickselect with a branch-free partition: each round copies its elements into the next
     scratch, those above the pivot packed from the front and those below from the back (every
-    element stored at both ends, the counters advanced by the comparisons), so the data-dependent
-    branches of Wirth's partition — mispredicted about every other element of a band of a few
-    dozen — are gone. The value returned is the k-th largest whatever the algorithm."""
+    element stored at both ends, the counters advanced by the comparisons). The data-dependent
+    branches of an in-place partition (Wirth's, used before), mispredicted about every other
+    element, are gone. The value returned is the k-th largest whatever the algorithm."""
     src = 0
     dst = s1
     nxt = s2
@@ -178,7 +150,7 @@ def _band_select(
                     z_hi = v
                     seed[0] = c
                     seed[1] = t
-    fn1 = _kth_largest_bf(band, kb, n + 1 - khi, kb, 2 * kb)
+    fn1 = _kth_largest(band, kb, n + 1 - khi, kb, 2 * kb)
     cnt = khi
     wsum = w_hi
     fmin = fmin_hi
