@@ -219,6 +219,11 @@ def _bearing_kernel(
     # upper and upper-left neighbours (all done before it in this loop order); the bracket
     # half-width follows the recent guess errors
     thr = np.empty((n_i, n_j))
+    # the mirrored sag as one flat row-major array: the sag at row offset a and column offset
+    # d is mflat[a * w_mir + c_mir + d]
+    w_mir = mirror.shape[1]
+    c_mir = (w_mir - 1) // 2
+    mflat = mirror.ravel()
     err = -1.0
     for si in range(0, n_i, sx):
         se = min(si + sx, n_i)
@@ -315,6 +320,7 @@ def _bearing_kernel(
             ch_hi = np.empty(size_ch)
             ch_w = np.empty(size_ch)
             bulk = np.empty(size_ch, np.int64)
+            ch_r = np.empty(size_ch, np.int64)
             # the chunks' heights and slope factors, copied contiguously: step 3 reads them
             # for every position of the tile, and the rows of the map they come from are far
             # apart in memory
@@ -399,6 +405,10 @@ def _bearing_kernel(
                     seed[0] = -1
                     for a in range(ti, te):
                         pi = ii[a]
+                        # where each chunk's row of the sag starts in the flat mirror, for the
+                        # positions of this row
+                        for c in range(nch):
+                            ch_r[c] = abs(ch_i[c] - pi) * w_mir + c_mir
                         for b in range(tj, tje):
                             pj = jj[b]
                             # bracket the threshold near its neighbours'; if it falls
@@ -417,9 +427,9 @@ def _bearing_kernel(
                                 lo, hi = max(guess - delta, tau_t), guess + delta
                             tries = 0
                             while not _band_select(
-                                ch_hv, ch_wv, ch_i, ch_j0, ch_j1, ch_lo, ch_hi, ch_w, nch, bulk,
-                                seed, pi, pj,
-                                mirror, n, lo, hi, band, band_w, res,
+                                ch_hv, ch_wv, ch_r, ch_j0, ch_j1, ch_lo, ch_hi, ch_w, nch, bulk,
+                                seed, pj,
+                                mflat, n, lo, hi, band, band_w, res,
                             ):  # fmt: skip
                                 # the next bracket beside the last, four times as wide (an open
                                 # bracket reads every chunk on that side); open after two tries

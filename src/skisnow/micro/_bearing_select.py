@@ -60,7 +60,7 @@ def _kth_largest(
 def _band_select(
     ch_hv: np.ndarray,
     ch_wv: np.ndarray,
-    ch_i: np.ndarray,
+    ch_r: np.ndarray,
     ch_j0: np.ndarray,
     ch_j1: np.ndarray,
     ch_lo: np.ndarray,
@@ -69,9 +69,8 @@ def _band_select(
     nch: int,
     bulk: np.ndarray,
     seed: np.ndarray,
-    pi: int,
     pj: int,
-    mirror: np.ndarray,
+    mflat: np.ndarray,
     n: int,
     g_lo: float,
     g_hi: float,
@@ -94,18 +93,16 @@ def _band_select(
     w_hi = 0.0
     z_hi = -np.inf
     fmin_hi = np.inf
-    off = (mirror.shape[1] - 1) // 2 - pj  # mirror column of the pixel column gj: gj + off
     for c in range(nch):
-        gi = ch_i[c]
+        rb = ch_r[c] - pj  # the sag at the chunk's pixel column gj is mflat[rb + gj]
         j0 = ch_j0[c]
         j1 = ch_j1[c]
-        srow = mirror[u8(abs(gi - pi))]
         # the sag is least at the chunk's column nearest pj, largest at its farthest end
         jn = min(max(pj, j0), j1 - 1)
         jf = j0 if pj - j0 > j1 - 1 - pj else j1 - 1
-        if ch_hi[c] - srow[u8(jn + off)] < g_lo:
+        if ch_hi[c] - mflat[u8(rb + jn)] < g_lo:
             continue
-        if ch_lo[c] - srow[u8(jf + off)] > g_hi:
+        if ch_lo[c] - mflat[u8(rb + jf)] > g_hi:
             khi += j1 - j0
             w_hi += ch_w[c]
             bulk[nb] = c
@@ -113,10 +110,10 @@ def _band_select(
             continue
         hrow = ch_hv[c]
         wrow = ch_wv[c]
-        base = j0 + off
+        base = rb + j0
         for t in range(j1 - j0):
             ut = np.uint64(t)
-            v = hrow[ut] - srow[u8(base + t)]
+            v = hrow[ut] - mflat[u8(base + t)]
             wv = wrow[ut]
             hi = v > g_hi
             khi += hi
@@ -135,17 +132,16 @@ def _band_select(
     # guess that prunes most of them (the result is the maximum whatever the guess)
     cs = seed[0]
     if cs >= 0:
-        z_hi = max(z_hi, ch_hv[cs, seed[1]] - mirror[abs(ch_i[cs] - pi), ch_j0[cs] + seed[1] + off])
+        z_hi = max(z_hi, ch_hv[cs, seed[1]] - mflat[ch_r[cs] - pj + ch_j0[cs] + seed[1]])
     for k in range(nb):
         c = bulk[k]
-        gi = ch_i[c]
-        srow = mirror[abs(gi - pi)]
+        rb = ch_r[c] - pj
         j0 = ch_j0[c]
         j1 = ch_j1[c]
-        if ch_hi[c] - srow[min(max(pj, j0), j1 - 1) + off] > z_hi:
+        if ch_hi[c] - mflat[rb + min(max(pj, j0), j1 - 1)] > z_hi:
             hrow = ch_hv[c]
             for t in range(j1 - j0):
-                v = hrow[t] - srow[j0 + t + off]
+                v = hrow[t] - mflat[rb + j0 + t]
                 if v > z_hi:
                     z_hi = v
                     seed[0] = c
@@ -178,15 +174,14 @@ def _band_select(
         # chunks counted whole included (read those that can hold it)
         for k in range(nb):
             c = bulk[k]
-            gi = ch_i[c]
-            srow = mirror[abs(gi - pi)]
+            rb = ch_r[c] - pj
             j0 = ch_j0[c]
             j1 = ch_j1[c]
             jf = j0 if pj - j0 > j1 - 1 - pj else j1 - 1
-            if ch_lo[c] - srow[jf + off] < fmin:
+            if ch_lo[c] - mflat[rb + jf] < fmin:
                 hrow = ch_hv[c]
                 for t in range(j1 - j0):
-                    fmin = min(fmin, hrow[t] - srow[j0 + t + off])
+                    fmin = min(fmin, hrow[t] - mflat[rb + j0 + t])
     z0 = z_hi
     if n == 0 or cnt == 0:
         z0 = fn1
