@@ -18,7 +18,7 @@ and everything else is pruned by bounds:
    A super-tile applies this to its search window once; each tile applies it again, with its
    own tighter distances, to the super-tile's survivors.
 3. For the tile's survivors the exact F is evaluated for every position of the tile, the
-   (⌊N*⌋+1)-th largest found by an in-place selection, and the contact summed (ties at the
+   (⌊N*⌋+1)-th largest found by a selection, and the contact summed (ties at the
    boundary taken in raster order, as the reference's stable sort does).
 
 Steps 1–3 run in one compiled kernel (numba, GIL released; see the comment at
@@ -40,11 +40,13 @@ bounded by its least and largest h and the sag at its nearest and farthest colum
 below the band is skipped and one above it counted whole (its Σw precomputed; the largest F of
 the position is then read from the chunks that can hold it, starting from the pixel where the
 previous position of the tile found it), and the others are read contiguously (h, w and a
-mirrored sag row, no index arrays). The super-tile's window is also shrunk to the rows and
-columns where max h − s(r) still reaches a first lower bound of τ from its core, and its scans
-skip the blocks of 8 columns whose largest h (:func:`block_max`) cannot reach the level they
-keep. The hot loops index with unsigned integers: numba then omits the wraparound arithmetic
-of negative indices at every access.
+mirrored sag row, no index arrays; the mirror is read flat, each chunk's row of it located once
+per row of positions). Every selection (the band's and those of steps 1–2) is a quickselect
+with a branch-free partition into scratch copies (:func:`_kth_largest`). The super-tile's
+window is also shrunk to the rows and columns where max h − s(r) still reaches a first lower
+bound of τ from its core, and its scans skip the blocks of 8 columns whose largest h
+(:func:`block_max`) cannot reach the level they keep. The hot loops index with unsigned
+integers: numba then omits the wraparound arithmetic of negative indices at every access.
 
 Cost (measured, ``benchmarks/bench_speed.py --rows bearing``, preset S3, 1 mm² at 1 µm, 31
 sizes 450–750 µm, 5.2 million position–size pairs): ~2.8 µs CPU per pair (load 11: 14.3 s
