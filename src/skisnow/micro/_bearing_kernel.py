@@ -49,11 +49,11 @@ bound of τ from its core, and its scans skip the blocks of 8 columns whose larg
 integers: numba then omits the wraparound arithmetic of negative indices at every access.
 
 Cost (measured, ``benchmarks/bench_speed.py --rows bearing``, preset S3, 1 mm² at 1 µm, 31
-sizes 450–750 µm, 5.2 million position–size pairs): ~2.8 µs CPU per pair (load 11: 14.3 s
-CPU; ~3.7 µs before the fourth pass of issue 29, see ``docs/performance/speed.md``); against
-~35–45 µs per pair for the earlier NumPy block search and ~10 ms for the naive search.
-``stride`` trades positions for time (stride 3 changed the mean A_fr by 4·10⁻⁵ relative on
-preset S3).
+sizes 450–750 µm, 5.2 million position–size pairs): ~2.3 µs CPU per pair (11.6–12.0 s CPU at
+load 11–17 where the fourth pass's code took 14.2–14.5 s; ~3.7 µs before the fourth pass of
+issue 29, see ``docs/performance/speed.md``); against ~35–45 µs per pair for the earlier NumPy
+block search and ~10 ms for the naive search. ``stride`` trades positions for time (stride 3
+changed the mean A_fr by 4·10⁻⁵ relative on preset S3).
 """
 
 from __future__ import annotations
