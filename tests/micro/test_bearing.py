@@ -146,3 +146,18 @@ def test_tiling_does_not_change_the_answer() -> None:
         m = bearing_area(t, **kw, block=block, superblock=superblock)
         np.testing.assert_array_equal(m.first_contact, base.first_contact)
         np.testing.assert_allclose(m.fractional_area, base.fractional_area, rtol=1e-12)
+
+
+def test_branch_free_selection_is_the_kth_largest_and_leaves_its_input() -> None:
+    from skisnow.micro._bearing_select import _kth_largest
+
+    rng = np.random.default_rng(7)
+    for m in (1, 2, 3, 8, 61, 500):
+        # continuous values, heavy ties (4 distinct values) and all equal
+        for vals in (rng.normal(size=m), rng.integers(0, 4, size=m) * 0.5, np.full(m, 1.25)):
+            ordered = np.sort(vals)[::-1]
+            for k in sorted({1, 2, m // 2 + 1, m - 1, m} & set(range(1, m + 1))):
+                buf = np.full(3 * m, np.nan)
+                buf[:m] = vals
+                assert _kth_largest(buf, m, k, m, 2 * m) == ordered[k - 1]
+                np.testing.assert_array_equal(buf[:m], vals)
