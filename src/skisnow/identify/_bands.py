@@ -60,7 +60,7 @@ def _penalised_step(sol: _LmResult, pen):
     ``(r, JᵀJ, PᵀP, A = JᵀJ + PᵀP, A⁺, δ̂, r + J δ̂, P (p + δ̂) - t)``."""
     pen, target = pen if isinstance(pen, tuple) else (pen, np.zeros(pen.shape[0]))
     j, r, p = sol.jac, sol.fun, sol.x
-    jtj = j.T @ j
+    jtj = sol.jtj
     ptp = pen.T @ pen
     a = jtj + ptp
     a_inv = np.linalg.pinv(a)
@@ -134,7 +134,7 @@ def posterior(
     the σ-normalised residual change of a finer forward model (the discretisation error);
     ``smoothing`` the estimated smoothing bias of the parameters (:func:`smoothing_bias`),
     added as a rank-one term."""
-    jtj = sol.jac.T @ sol.jac
+    jtj = sol.jtj
     ptp = sol.pen.T @ sol.pen
     cov = np.linalg.pinv(jtj + ptp)
     prior = np.linalg.pinv(ptp)
@@ -184,7 +184,7 @@ def discrepancy_covariance(
     invisible in the misfit, moved z0 by 3-7 posterior standard deviations (docs/validation/
     identification-uncertainty.md)."""
     j = sol.jac
-    a_inv = np.linalg.pinv(j.T @ j + sol.pen.T @ sol.pen)
+    a_inv = np.linalg.pinv(sol.jtj + sol.pen.T @ sol.pen)
     middle = np.zeros((j.shape[1], j.shape[1]))
     start = 0
     for x, w in rows:

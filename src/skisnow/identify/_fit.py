@@ -287,7 +287,7 @@ def fit_bench(
                 # the noise): the exact fit then starts at the λ it will most likely keep
                 lam_first = grid[pick([score(last, problem.penalty(v), v) for v in grid])]
     sol, lam, records, best = exact(p, lam_first)
-    bound, dof = restart_bound(sol.jac, problem.penalty_matrix(lam))
+    bound, dof = restart_bound(sol.jac, problem.penalty_matrix(lam), jtj=sol.jtj)
     if float(sol.fun @ sol.fun) > bound:
         # Globalisation of a fit that ends above the noise (module docstring, stage 5): the
         # smoothed contact restarted at the stalled fit, then the exact contact again; the
@@ -301,7 +301,7 @@ def fit_bench(
         trial = exact(p, lam)
         if trial[0].misfit_rms < sol.misfit_rms:
             sol, lam, records, best = trial
-            bound, dof = restart_bound(sol.jac, problem.penalty_matrix(lam))
+            bound, dof = restart_bound(sol.jac, problem.penalty_matrix(lam), jtj=sol.jtj)
     final = score(sol, problem.penalty(lam), lam)
     table = tuple(
         (rec[0], rec[1], rec[2], rec[3]) if k != best else final[:4]

@@ -55,7 +55,11 @@ RESTART_SIGMAS = 2.0
 
 
 def restart_bound(
-    jac: NDArray[np.float64], pen: NDArray[np.float64], sigmas: float = RESTART_SIGMAS
+    jac: NDArray[np.float64],
+    pen: NDArray[np.float64],
+    sigmas: float = RESTART_SIGMAS,
+    *,
+    jtj: NDArray[np.float64] | None = None,
 ) -> tuple[float, float]:
     """The discrepancy bound of the χ² of a penalised fit at its optimum (Morozov 1966, with the
     fit's own degrees of freedom): ``(bound, dof)``.
@@ -71,7 +75,7 @@ def restart_bound(
     exact-contact misfit with χ² 60-180 above the data's optimum sits below that bound and
     above this one (measured: the four-mass skate at 10 µm, seed 2, 1.021 σ, restarted 0.979
     σ, where the fit from the true ski ends at 1.012 σ)."""
-    jtj = jac.T @ jac
+    jtj = jac.T @ jac if jtj is None else jtj  # JᵀJ given: the fit's own (_LmResult.jtj)
     b = np.linalg.lstsq(jtj + pen.T @ pen, jtj, rcond=None)[0]  # (JᵀJ + PᵀP)⁻¹ JᵀJ
     dof = float(jac.shape[0] - 2.0 * np.trace(b) + np.sum(b * b.T))
     return dof + sigmas * np.sqrt(2.0 * max(dof, 1.0)), dof

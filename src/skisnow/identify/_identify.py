@@ -37,6 +37,7 @@ from typing import Any
 import numpy as np
 
 from skisnow._errors import ConvergenceError, InputError
+from skisnow._parallel import single_threaded_blas
 from skisnow.identify._bands import (
     UNDERSMOOTHING,
     discrepancy_covariance,
@@ -73,6 +74,11 @@ def _camber_coefficients(raw: list, length: float) -> int:
     return max(6, round(length / knot) + 3)
 
 
+# One BLAS thread: the fit's products are small (JᵀJ of ~250 parameters, 250 × 250 solves) and a
+# second OpenBLAS thread's spinning waits cost far more on a shared machine (measured on ski 6's
+# shop bench at load 5.6-7.3: 6.4 s CPU, 12.4 s wall on one thread; 25.3 s CPU, 82.6 s wall on
+# OpenBLAS's default two; docs/validation/identification-uncertainty.md, "Fifth pass: time").
+@single_threaded_blas()
 def identify_ski(
     bench: Any,
     *,

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
+from functools import cached_property
 from typing import Any
 
 import numpy as np
@@ -32,11 +33,20 @@ class _LmResult:
     status: int  #: 1 converged (Newton decrement), 0 evaluation limit, -1 no descent
     message: str
     pen_target: NDArray[np.float64] | None = None  #: t (None: zero)
+    #: JᵀJ at x if the loop formed it there (else None: :attr:`jtj` forms it when first used)
+    jtj_at_x: NDArray[np.float64] | None = None
 
     @property
     def target(self) -> NDArray[np.float64]:
         """The penalty's target t (zeros when none was given)."""
         return np.zeros(self.pen.shape[0]) if self.pen_target is None else self.pen_target
+
+    @cached_property
+    def jtj(self) -> NDArray[np.float64]:
+        """JᵀJ of the data residuals at x, computed once per result: every λ of the GCV grid,
+        the discrepancy bound, the posterior and the smoothing bias use it (on a 39-case bench
+        of 16,000 bins each product is ~2 GFlop; the same numbers as computed afresh)."""
+        return self.jac.T @ self.jac if self.jtj_at_x is None else self.jtj_at_x
 
     @property
     def misfit_rms(self) -> float:
@@ -130,8 +140,11 @@ def levenberg_marquardt(
     mu, nu = -1.0, 2.0
     small_steps = 0  # consecutive accepted steps that lowered the sum of squares by < tol
     status, message = 0, "evaluation limit reached"
+    jtj_at: tuple[Any, Any] = (None, None)  # (J, JᵀJ) of the last normal matrix formed
     while nfev < max_nfev:
-        a = j.T @ j + ptp
+        jtj = j.T @ j
+        jtj_at = (j, jtj)
+        a = jtj + ptp
         g = j.T @ r + ptp @ p - pt
         dscale = np.maximum(np.diag(a), 1e-12 * max(float(np.max(np.diag(a))), 1e-300))
         if mu < 0:
@@ -186,7 +199,7 @@ def levenberg_marquardt(
             break
     return _LmResult(
         x=p, fun=r, jac=j, pen=pen, cost=cost, nfev=nfev, status=status, message=message,
-        pen_target=target,
+        pen_target=target, jtj_at_x=jtj_at[1] if jtj_at[0] is j else None,
     )  # fmt: skip
 
 

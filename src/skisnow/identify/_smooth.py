@@ -42,9 +42,8 @@ from scipy.sparse import csr_matrix
 from scipy.special import expit, spence
 
 from skisnow._errors import ConvergenceError
-from skisnow.identify._banded_kernel import banded_cholesky, banded_solve
+from skisnow.identify._banded_kernel import banded_cholesky, banded_solve, smoothed_hessian
 from skisnow.identify._model import _Problem
-from skisnow.ski import banded_upper
 
 __all__ = ["SmoothedBench"]
 
@@ -88,7 +87,7 @@ class SmoothedBench:
         w = np.ones(m)
         w[[0, -1]] = 0.5
         self.weights = np.broadcast_to(w / (m - 1), (n_el, m)).copy()  # one per element
-        self.shape = grid.shape  # (n_el, m, 4)
+        self.shape = np.ascontiguousarray(grid.shape)  # (n_el, m, 4)
         self.xs = grid.x
         self.nmat = grid.matrix  # (S, 2n) sparse
         self.nmat_t = grid.matrix.T.tocsr()
@@ -108,15 +107,10 @@ class SmoothedBench:
         return (self.nmat_t @ (self.phi_sub.multiply(q.ravel()[:, None]))) @ self.problem.q_z
 
     def _hessian(self, ab, d):
-        ke = np.einsum("es,esa,esb->eab", d, self.shape, self.shape)
-        hess = ab + banded_upper(ke, self.problem.n)
-        cl = self.problem.clamp
-        for dof in (2 * cl, 2 * cl + 1):
-            hess[:, dof] = 0.0
-            for j in range(dof, min(dof + 4, 2 * self.problem.n)):
-                hess[3 + dof - j, j] = 0.0
-            hess[3, dof] = 1.0
-        return hess
+        """The clamped stiffness plus the foundation's element matrices Σ_s d_s N_s N_sᵀ, the
+        clamped DOFs the identity (compiled: :func:`~skisnow.identify._banded_kernel.
+        smoothed_hessian`)."""
+        return smoothed_hessian(ab, d, self.shape, self.problem.clamp)
 
     def evaluate(
         self,
