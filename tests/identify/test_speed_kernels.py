@@ -1,4 +1,4 @@
-"""The identification's speed-ups (issue 25, fifth pass) give the numbers of the routes they replace.
+"""The identification's speed-ups (issue 25, fifth pass) give the numbers of the routes replaced.
 
 The fit's path (which restarts run, which local minimum it reaches) can change with the last bit
 of a residual, so each compiled or cached route is held to bitwise equality with the NumPy
