@@ -44,6 +44,7 @@ from scipy.special import expit, spence
 from skisnow._errors import ConvergenceError
 from skisnow.identify._banded_kernel import banded_cholesky, banded_solve, smoothed_hessian
 from skisnow.identify._model import _Problem
+from skisnow.identify._smooth_kernel import newton_smoothed
 
 __all__ = ["SmoothedBench"]
 
@@ -54,13 +55,26 @@ def _softplus(t: NDArray[np.float64]) -> NDArray[np.float64]:
     return np.logaddexp(0.0, t)
 
 
+#: Below this t, 1 + eᵗ rounds to 1 exactly (eᵗ < 2⁻⁵³) and F₂(t) = -spence(1) = -0.0.
+_F2_ZERO = -40.0
+
+
 def _f2(t: NDArray[np.float64]) -> NDArray[np.float64]:
-    """∫_{-∞}^t softplus = -Li₂(-eᵗ) (Li₂(z) = spence(1 - z)), stable for both signs of t."""
-    out = np.empty_like(t)
-    neg = t <= 0.0
-    out[neg] = -spence(1.0 + np.exp(t[neg]))
-    tp = t[~neg]
-    out[~neg] = 0.5 * tp * tp + np.pi**2 / 6.0 + spence(1.0 + np.exp(-tp))
+    """∫_{-∞}^t softplus = -Li₂(-eᵗ) (Li₂(z) = spence(1 - z)), stable for both signs of t.
+
+    ``spence`` is evaluated only where t > :data:`_F2_ZERO` (sub-grid points within 40 ε of
+    the stone, a few percent of them): below, its argument is 1 exactly and the value -0.0,
+    written directly (the same numbers, bitwise; it was a fifth of the smoothed contact's
+    time)."""
+    out = np.full_like(t, -0.0)
+    near = t > _F2_ZERO
+    tn = t[near]
+    vals = np.empty_like(tn)
+    neg = tn <= 0.0
+    vals[neg] = -spence(1.0 + np.exp(tn[neg]))
+    tp = tn[~neg]
+    vals[~neg] = 0.5 * tp * tp + np.pi**2 / 6.0 + spence(1.0 + np.exp(-tp))
+    out[near] = vals
     return out
 
 
@@ -76,6 +90,9 @@ def _banded_matvec(ab: NDArray[np.float64], x: NDArray[np.float64]) -> NDArray[n
 
 class SmoothedBench:
     """Residuals and exact Jacobian of the bench with the smoothed stone of width ε."""
+
+    #: Newton's method compiled (True) or in NumPy (the reference; :meth:`_newton`)
+    compiled: bool = True
 
     def __init__(self, problem: _Problem) -> None:
         self.problem = problem
@@ -179,7 +196,16 @@ class SmoothedBench:
 
     def _newton(self, ab, z0s, f, f_total, m_total, kc, eps, start):
         """Newton's method with backtracking on Π from ``start`` = (u, a, b); None if it fails
-        (a start far off can overflow: that is a failure, not a warning)."""
+        (a start far off can overflow: that is a failure, not a warning). Compiled
+        (:func:`~skisnow.identify._smooth_kernel.newton_smoothed`) unless :attr:`compiled` is
+        False: then the NumPy route of :meth:`_newton_steps`, the same steps and tests, kept as
+        the reference the compiled one is tested against."""
+        if self.compiled:
+            return newton_smoothed(
+                ab=ab, shape=self.shape, xs=self.xs, weights=self.weights, z0s=z0s, f=f,
+                f_total=f_total, m_total=m_total, kc=kc, eps=eps, start=start,
+                clamp=self.problem.clamp, floor_h=1e-3 * self.problem.sigma,
+            )  # fmt: skip
         with np.errstate(over="ignore", invalid="ignore"):
             return self._newton_steps(ab, z0s, f, f_total, m_total, kc, eps, start)
 
