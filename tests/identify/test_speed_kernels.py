@@ -139,3 +139,33 @@ def test_compiled_newton_of_the_smoothed_contact_is_the_numpy_one() -> None:
         (r0, j0), (r1, j1) = out[False], out[True]
         assert np.max(np.abs(r1 - r0)) < 1e-4
         assert np.linalg.norm(j1 - j0) < 1e-6 * np.linalg.norm(j0)
+
+
+def test_identification_runs_on_one_blas_thread(monkeypatch) -> None:
+    """identify_ski limits BLAS to one thread while it runs (two OpenBLAS threads cost 4 times
+    the CPU time on the shared machine) and gives the previous setting back."""
+    import pytest
+    from threadpoolctl import threadpool_info, threadpool_limits
+
+    from skisnow.bench import run_bench
+    from skisnow.identify import _identify, identify_ski
+    from skisnow.ski._shipped import build_shipped
+
+    class Seen(Exception):
+        pass
+
+    def blas_threads() -> list[int]:
+        return [i["num_threads"] for i in threadpool_info() if i["user_api"] == "blas"]
+
+    def spy(*args, **kwargs):
+        raise Seen(blas_threads())
+
+    bench = run_bench(build_shipped("classic"), masses=(20, 40), load_positions=(-0.12,))
+    monkeypatch.setattr(_identify, "estimate_noise", spy)
+    with threadpool_limits(limits=2, user_api="blas"):  # the suite runs on one (conftest)
+        before = blas_threads()
+        with pytest.raises(Seen) as seen:
+            identify_ski(bench)
+        assert blas_threads() == before
+    assert seen.value.args[0] and all(n == 1 for n in seen.value.args[0])
+    assert any(n == 2 for n in before)
