@@ -61,9 +61,9 @@ def _pooled_coverage() -> tuple[float, float]:
 
 @pytest.mark.xfail(
     reason="issue 25's EI target (90-98 % of determined stations inside the 95 % bands) is not "
-    "reached on these two skis: 77.7 % measured with the noise estimated across profiles "
-    "(seed 7: 50/64, seed 8: 37/48; 80.4 % with the single-profile noise estimate of the third "
-    "pass; without the smoothing-bias term 67.0 %), while skis 5-24 on 1 mm benches pooled "
+    "reached on these two skis: 80.4 % (90/112) measured with the compiled smoothed-contact "
+    "Newton of the fifth pass (77.7 % before it, with the noise estimated across profiles; "
+    "without the smoothing-bias term 67.0 %), while skis 5-24 on 1 mm benches pooled "
     "91.5 % (5 µm) and 93.3 % (10 µm): docs/validation/identification-uncertainty.md",
     strict=False,
 )
@@ -76,8 +76,9 @@ def test_stiffness_bands_cover_the_truth_on_independent_benches() -> None:
 
 @pytest.mark.xfail(
     reason="issue 25's z0 target (90-98 % of determined stations inside the 95 % bands) is not "
-    "reached by the Laplace bands: 55.3 % measured on these two skis (seed 7: 375/382, seed 8, "
-    "a classic: 63/410; 55.2 % with the third pass's noise estimate); the fit lands in one of "
+    "reached by the Laplace bands: 58.7 % (465/792) measured on these two skis with the "
+    "compiled smoothed-contact Newton of the fifth pass (55.3 % before it; seed 8, a classic, "
+    "the worst); the fit lands in one of "
     "several basins that trade z0 against EI, which no band at one fit can see; the "
     "parametric bootstrap (skisnow.identify.bootstrap_bands, opt-in) is the remedy measured "
     "in docs/validation/identification-uncertainty.md (fourth pass)",
