@@ -114,3 +114,31 @@ def test_every_shipped_ski_says_it_is_calibrated_not_identified() -> None:
     assert "shipped" not in uncertainty_note(changed)  # the name alone does not make it shipped
     assert "no uncertainty recorded" in uncertainty_note(changed)
     assert "posterior" in uncertainty_note(with_posterior(get_ski("classic")))
+
+
+def test_sample_quantiles_are_numpys_nanquantile_to_the_bit() -> None:
+    # _quantiles takes np.quantile at once over the rows without NaN (nanquantile loops over
+    # rows in Python): the same numbers, bit for bit, with NaNs, ties, all-NaN rows, 2-D and 3-D
+    import warnings
+
+    from skisnow.pipeline._intervals import _quantiles
+
+    rng = np.random.default_rng(11)
+    for trial in range(60):
+        shape = (*rng.integers(1, 13, size=1 + trial % 2), int(rng.integers(2, 150)))
+        v = rng.standard_normal(shape) * 10.0 ** rng.integers(-8, 8)
+        if trial % 3 == 0:
+            v[rng.random(shape) < 0.1] = np.nan
+        if trial % 4 == 0:
+            v = np.round(v, 1)  # ties
+        if trial % 5 == 0:
+            v[0] = np.nan  # an answer undefined in every sample
+        for level in (0.95, 0.5, 0.8):
+            a = (1.0 - level) / 2.0
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore", RuntimeWarning)  # all-NaN slices
+                want = (np.nanquantile(v, a, axis=-1), np.nanquantile(v, 1 - a, axis=-1))
+            got = _quantiles(v, level)
+            for w, g in zip(want, got, strict=True):
+                assert g.shape == w.shape
+                assert np.array_equal(g, w, equal_nan=True), (trial, level)
