@@ -14,6 +14,11 @@ _RAM_ROOT = "skisnow-pytest-"
 
 
 def pytest_configure(config: pytest.Config) -> None:
+    _ram_basetemp(config)
+    _start_numba_warm(config)
+
+
+def _ram_basetemp(config: pytest.Config) -> None:
     """The session's temporary files (``tmp_path``) on the RAM file system ``/dev/shm``, where
     the system has one (writable, at least 1 GiB free; the same rule as the explorer's store,
     :func:`skisnow._atomic.scratch_directory`), unless ``--basetemp`` is given.
@@ -43,8 +48,67 @@ def pytest_configure(config: pytest.Config) -> None:
     config._skisnow_ram_root = config.option.basetemp  # type: ignore[attr-defined]
 
 
+def _start_numba_warm(config: pytest.Config) -> None:
+    """Compile the numba kernels a fresh clone has not cached yet, once, before the tests run.
+
+    With no numba cache (a fresh clone: ``cache=True`` writes beside the sources), each of the
+    two xdist workers compiled the contact's and the bearing model's kernels itself (~11 s and
+    ~6 s of CPU each, measured with an empty cache), and every CLI subprocess started before a
+    worker had written the cache compiled them again. Here the session's first process starts
+    one process per group of kernels (``tests/_numba_warm.py``: the contact's; the bearing
+    model's and identification's) while the workers start and collect, and the tests are handed
+    out once they have written the cache (see ``_wait_for_numba_warm``); every process of the
+    suite then loads the kernels from it. Nothing is started where every kernel of a group is
+    cached and newer than its source, or with ``SKISNOW_TEST_NO_WARM=1``. The kernels are
+    numba's compilations of the same sources: no test computes anything differently."""
+    import contextlib
+    import os
+    import subprocess
+    import sys
+
+    if hasattr(config, "workerinput") or os.environ.get("SKISNOW_TEST_NO_WARM"):
+        return  # an xdist worker (its controller warms), or not wanted
+    import _numba_warm
+
+    src = REPO / "src" / "skisnow"
+    procs = []
+    for groups in (("contact",), ("micro", "identify")):
+        todo = [g for g in groups if not _numba_warm.cached(g, src)]
+        if todo:
+            # an OSError is only slower: the workers compile what they need, as before
+            with contextlib.suppress(OSError):
+                procs.append(subprocess.Popen(
+                    [sys.executable, _numba_warm.__file__, *todo], stdin=subprocess.DEVNULL,
+                    stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                ))  # fmt: skip
+    config._skisnow_numba_warm = procs  # type: ignore[attr-defined]
+
+
+def _wait_for_numba_warm(config: pytest.Config) -> None:
+    """Wait until the warming processes of :func:`pytest_configure` have ended (their exit
+    status does not matter: a kernel they did not cache is compiled where it is needed)."""
+    for proc in getattr(config, "_skisnow_numba_warm", []):
+        proc.wait()
+    config._skisnow_numba_warm = []  # type: ignore[attr-defined]
+
+
+@pytest.hookimpl(optionalhook=True)
+def pytest_xdist_node_collection_finished(node, ids) -> None:
+    """(xdist controller) the workers have collected: hand out no test before the cache is."""
+    _wait_for_numba_warm(node.config)
+
+
+def pytest_collection_finish(session: pytest.Session) -> None:
+    """(a serial run) the tests start after the cache is written."""
+    _wait_for_numba_warm(session.config)
+
+
 def pytest_unconfigure(config: pytest.Config) -> None:
     import shutil
+
+    for proc in getattr(config, "_skisnow_numba_warm", []):  # a session that ended early
+        proc.kill()
+        proc.wait()
 
     root = getattr(config, "_skisnow_ram_root", None)
     if root is not None:
