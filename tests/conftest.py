@@ -87,9 +87,16 @@ def _start_numba_warm(config: pytest.Config) -> None:
 
 def _wait_for_numba_warm(config: pytest.Config) -> None:
     """Wait until the warming processes of :func:`pytest_configure` have ended (their exit
-    status does not matter: a kernel they did not cache is compiled where it is needed)."""
+    status does not matter: a kernel they did not cache is compiled where it is needed; one
+    still running after 5 minutes is ended, and the tests start)."""
+    import subprocess
+
     for proc in getattr(config, "_skisnow_numba_warm", []):
-        proc.wait()
+        try:
+            proc.wait(timeout=300)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+            proc.wait()
     config._skisnow_numba_warm = []  # type: ignore[attr-defined]
 
 
