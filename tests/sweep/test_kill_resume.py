@@ -24,11 +24,14 @@ from skisnow.cli import main
 from skisnow.sweep import SweepSpec, open_sweep, run_sweep
 from skisnow.sweep._store import done_chunks
 
-# 25 masses × 20 moduli = 20 chunks of 25 solves each (with 6 solves a chunk the faster solver
-# and store finished all 20 chunks between the first one marked done and the Ctrl-C, at load 10)
+# 25 masses × 77 moduli = 77 chunks of 25 solves each (with 6 solves a chunk the faster solver
+# and store finished all 20 chunks between the first one marked done and the Ctrl-C, at load 10;
+# with 20 chunks of 25 solves, once the workers wrote their own chunks, the last chunks finished
+# between the poll that saw enough of them done and the SIGKILL in 3 of ~10 runs at load 2-8:
+# 77 chunks leave dozens undone whatever the poll's delay)
 ARGS = [
     "sweep", "--ski", "skate", "--mass-kg", "5:125:5", "--load-position-mm", "-120",
-    "--snow-modulus-mpa", "20:400:20", "--points", "512", "--profile-source", "beam",
+    "--snow-modulus-mpa", "20:400:5", "--points", "512", "--profile-source", "beam",
 ]  # fmt: skip
 #: The CLI in a child that takes Ctrl-C as a terminal job does, even where the test runner itself
 #: was started ignoring SIGINT (a background job of a shell without job control, nohup: ignored
@@ -47,7 +50,7 @@ def _spec() -> SweepSpec:
         skis=("skate",),
         masses=np.arange(5.0, 126.0, 5.0),
         load_positions=(-0.12,),
-        snow_moduli=np.arange(20.0, 401.0, 20.0) * 1e6,
+        snow_moduli=np.arange(20.0, 401.0, 5.0) * 1e6,
         n_points=512,
         profile_source="beam",
     )
