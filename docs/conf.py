@@ -16,6 +16,7 @@ folder (a glob), so a page added to ``docs/user-guide/`` etc. appears without ed
 
 from __future__ import annotations
 
+import atexit
 import importlib
 import inspect
 import os
@@ -168,6 +169,8 @@ GALLERY = os.environ.get("SKISNOW_DOCS_GALLERY", "small").strip().lower()
 if GALLERY not in {"0", "off", "small", "full"}:
     raise ValueError(f"SKISNOW_DOCS_GALLERY must be 0, small or full, got {GALLERY!r}")
 _GALLERY_OUT = Path(tempfile.mkdtemp(prefix="skisnow-gallery-"))
+# the examples' own output files are not part of the site: removed when the build's process ends
+atexit.register(shutil.rmtree, _GALLERY_OUT, ignore_errors=True)
 
 
 def _example_argv(gallery_conf: dict, script_vars: dict) -> list[str]:
