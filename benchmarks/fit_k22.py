@@ -34,6 +34,7 @@ import time
 from pathlib import Path
 
 import numpy as np
+from scipy.interpolate import PchipInterpolator
 from scipy.optimize import differential_evolution, minimize
 
 from skisnow.calibrate import (
@@ -46,10 +47,119 @@ from skisnow.calibrate import (
     report,
 )
 from skisnow.paper import CAPTIONS, REPRODUCTION_TOLERANCES, compare_case, solve_caption_case
+from skisnow.ski import SPLINE_ENDS, SPLINE_KNOTS
 
 TOL = REPRODUCTION_TOLERANCES
 MARGIN = 0.85
 BAD = 1e6
+
+
+# ---- the feature parametrisation (fifth pass): where the ski stands on the bench -------------
+#: Grids of ``--param features``: log EI every 10 mm and z0 every 5 mm (both hold the default
+#: knots, so :func:`make_ski`, :func:`report` and ``--write-shipped`` read the record as any
+#: other), two camber knots pinned where the default knots are (a line is undone by the resting).
+FEATURES = (
+    # name, low, high, scale ("lin" or "log"), what it is
+    ("p_rear", -0.60, -0.30, "lin", "rear contact on the stone, unloaded [m]"),
+    ("p_front", 0.36, 0.72, "lin", "front contact on the stone, unloaded [m]"),
+    ("g_rear", 0.01, 0.12, "lin", "rear glide zone's half-length, flat to within its crown [m]"),
+    ("c_rear", 0.001, 0.3, "log", "rear glide zone's crown: camber at its ends [mm]"),
+    ("g_front", 0.01, 0.12, "lin", "front glide zone's half-length, flat to within its crown [m]"),
+    ("c_front", 0.001, 0.3, "log", "front glide zone's crown: camber at its ends [mm]"),
+    ("l_rear_back", 0.05, 0.35, "lin", "behind the rear glide zone to a control point [m]"),
+    ("h_rear_back", 0.005, 2.0, "log", "camber there [mm] (rear glide zone's flatness, back)"),
+    ("l_rear_fwd", 0.02, 0.20, "lin", "ahead of the rear glide zone to the arch's rear end [m]"),
+    ("h_rear_fwd", 0.005, 3.0, "log", "camber there [mm] (rear glide zone's flatness, forward)"),
+    ("apex", 0.05, 0.95, "lin", "kick arch apex, fraction between the arch's ends"),
+    ("h_arch", 0.02, 12.0, "log", "kick arch height above its higher end [mm] (kick clearance)"),
+    ("l_front_back", 0.02, 0.20, "lin", "behind the front glide zone to the arch's front end [m]"),
+    ("h_front_back", 0.005, 3.0, "log", "camber there [mm] (front glide zone's flatness, back)"),
+    ("l_front_fwd", 0.05, 0.30, "lin", "ahead of the front glide zone to a control point [m]"),
+    ("h_front_fwd", 0.005, 3.0, "log", "camber there [mm] (front glide zone's flatness, forward)"),
+    ("h_tail", 0.0, 8.0, "lin", "camber at the tail end, before the tail rise [mm]"),
+    ("h_tip", 0.0, 8.0, "lin", "camber at the tip end, before the shovel [mm]"),
+    ("ei_tail", 40.0, 30000.0, "log", "EI at the tail end [N m2]"),
+    ("ei_rear", 40.0, 30000.0, "log", "EI at the rear contact [N m2]"),
+    ("ei_mid", 40.0, 30000.0, "log", "EI of the middle plateau [N m2]"),
+    ("ei_front", 40.0, 30000.0, "log", "EI at the front contact [N m2]"),
+    ("ei_tip", 40.0, 30000.0, "log", "EI at the tip end [N m2]"),
+    ("t_rear", 0.05, 0.95, "lin", "plateau's rear end, fraction from the rear contact to 0"),
+    ("t_front", 0.05, 0.95, "lin", "plateau's front end, fraction from 0 to the front contact"),
+)
+
+
+def feature_knots(kind: str) -> tuple[tuple[float, ...], tuple[float, ...], tuple[int, int]]:
+    """(EI knots every 10 mm, camber knots every 5 mm, the two pinned camber knots)."""
+    x_tail, x_tip = SPLINE_ENDS[kind]
+    ek = np.round(np.linspace(x_tail, x_tip, round((x_tip - x_tail) / 0.01) + 1), 6)
+    zk = np.round(np.linspace(x_tail, x_tip, round((x_tip - x_tail) / 0.005) + 1), 6)
+    _, dz, dpins = SPLINE_KNOTS[kind]
+    pins = tuple(int(np.argmin(np.abs(zk - dz[p]))) for p in dpins)
+    return tuple(ek), tuple(zk), pins  # type: ignore[return-value]
+
+
+def feature_bounds() -> tuple[np.ndarray, np.ndarray]:
+    """The box of the features in their optimisation scale (log of the "log" ones)."""
+    lo = np.array([math.log(f[1]) if f[3] == "log" else f[1] for f in FEATURES])
+    hi = np.array([math.log(f[2]) if f[3] == "log" else f[2] for f in FEATURES])
+    return lo, hi
+
+
+def feature_values(w: np.ndarray) -> dict[str, float]:
+    """The features by name, in their units, from a vector in the optimisation scale."""
+    return {
+        f[0]: float(math.exp(x) if f[3] == "log" else x) for f, x in zip(FEATURES, w, strict=True)
+    }
+
+
+def feature_curves(
+    kind: str, w: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """(EI control knots [m], EI there [N m2], z0 control knots [m], z0 there [mm]).
+
+    z0: PCHIP through 13 control points (tail end; behind the rear glide zone; the rear glide
+    zone's ends at its crown and its centre, the rear contact, at 0; the arch's rear end, apex
+    and front end; the front glide zone alike; ahead of it; the tip end), every value >= 0,
+    so (PCHIP keeps the data's shape: no undershoot) the unloaded
+    ski rests on the two contacts exactly. log EI: PCHIP through the tail end, the rear
+    contact, the plateau's two ends, the front contact and the tip end.
+    """
+    f = feature_values(w)
+    x_tail, x_tip = SPLINE_ENDS[kind]
+    pr, pf, gr, gf = f["p_rear"], f["p_front"], f["g_rear"], f["g_front"]
+    cr, cf = f["c_rear"], f["c_front"]
+    a, b = pr + gr + f["l_rear_fwd"], pf - gf - f["l_front_back"]
+    hr, hf = cr + f["h_rear_fwd"], cf + f["h_front_back"]
+    back = max(pr - gr - f["l_rear_back"], x_tail + 0.02)
+    ahead = min(pf + gf + f["l_front_fwd"], x_tip - 0.02)
+    zx = [x_tail, back, pr - gr, pr, pr + gr, a, a + f["apex"] * (b - a), b, pf - gf, pf,
+          pf + gf, ahead, x_tip]  # fmt: skip
+    zv = [cr + f["h_rear_back"] + f["h_tail"], cr + f["h_rear_back"], cr, 0.0, cr, hr,
+          max(hr, hf) + f["h_arch"], hf, cf, 0.0, cf, cf + f["h_front_fwd"],
+          cf + f["h_front_fwd"] + f["h_tip"]]  # fmt: skip
+    t1, t2 = pr * (1.0 - f["t_rear"]), pf * f["t_front"]
+    ex = [x_tail, pr, t1, t2, pf, x_tip]
+    ev = [f["ei_tail"], f["ei_rear"], f["ei_mid"], f["ei_mid"], f["ei_front"], f["ei_tip"]]
+    return np.array(ex), np.array(ev), np.array(zx), np.array(zv)
+
+
+def feature_start(doc: dict) -> np.ndarray:
+    """A start in the optimisation scale: a feature file ({name: value}, the units of
+    :data:`FEATURES`), a record of ``--param features`` or a line of its log."""
+    f = doc.get("parametrisation", {}).get("features") or doc.get("features") or doc
+    return np.array([math.log(f[n]) if sc == "log" else f[n] for n, _, _, sc, _ in FEATURES])
+
+
+def feature_vector(kind: str, w: np.ndarray) -> np.ndarray:
+    """The features as a parameter vector of the calibration on :func:`feature_knots`."""
+    ek, zk, pins = feature_knots(kind)
+    ex, ev, zx, zv = feature_curves(kind, w)
+    log_ei = PchipInterpolator(ex, np.log(ev))(np.array(ek))
+    z = PchipInterpolator(zx, zv)(np.array(zk))
+    za, zb = z[pins[0]], z[pins[1]]
+    z = z - (za + (zb - za) * (np.array(zk) - zk[pins[0]]) / (zk[pins[1]] - zk[pins[0]]))
+    free = [k for k in range(len(zk)) if k not in pins]
+    return np.concatenate([log_ei, z[free]])
 
 
 def rows_of(kind: str, v: np.ndarray) -> list:
@@ -100,7 +210,18 @@ def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--ski", choices=("skate", "classic"), required=True)
     ap.add_argument("--knots", choices=("default", "dense"), default="default")
-    ap.add_argument("--start", action="append", required=True, help="calibration record(s)")
+    ap.add_argument(
+        "--param",
+        choices=("knots", "features"),
+        default="knots",
+        help="knots: log EI and z0 at knots; features: FEATURES (fifth pass)",
+    )
+    ap.add_argument(
+        "--start",
+        action="append",
+        default=[],
+        help="calibration record(s); with --param features: feature files (JSON)",
+    )
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--popsize", type=int, default=6)
     ap.add_argument("--sigma", type=float, default=0.03, help="start cloud, fraction of box")
@@ -112,33 +233,46 @@ def main() -> None:
     ap.add_argument("--tag", default="_v2")
     a = ap.parse_args()
     kind = a.ski
-    if a.knots == "dense":
-        KNOTS.update(DENSE_KNOTS)
-    starts = [record_vector(kind, json.loads(Path(s).read_text())) for s in a.start]
-    lo, hi = bounds(kind)
-    lo = np.minimum(lo, np.min(starts, axis=0))
-    hi = np.maximum(hi, np.max(starts, axis=0))
+    feats = a.param == "features"
+    if feats:  # the grids of the features; a start is a feature file, none: the whole box
+        KNOTS[kind] = feature_knots(kind)
+        lo, hi = feature_bounds()
+        starts = [feature_start(json.loads(Path(s).read_text())) for s in a.start]
+        to_v = lambda w: feature_vector(kind, w)  # noqa: E731
+    else:
+        if not a.start:
+            ap.error("--start: at least one calibration record (with --param knots)")
+        if a.knots == "dense":
+            KNOTS.update(DENSE_KNOTS)
+        starts = [record_vector(kind, json.loads(Path(s).read_text())) for s in a.start]
+        lo, hi = bounds(kind)
+        lo = np.minimum(lo, np.min(starts, axis=0))
+        hi = np.maximum(hi, np.max(starts, axis=0))
+        to_v = lambda w: w  # noqa: E731
     state = {"n": 0, "best": math.inf, "v": starts[0]}
     t0 = time.process_time()
     w0 = time.monotonic()
 
     def f(u: np.ndarray) -> float:
-        v = lo + (hi - lo) * np.clip(u, 0.0, 1.0)
+        w = lo + (hi - lo) * np.clip(u, 0.0, 1.0)
         state["n"] += 1
         try:
+            v = to_v(w)
             rows = rows_of(kind, v)
         except Exception:  # no wax pocket, the load off the supports, ...
             return BAD
         val = penalty(*errors(rows), cap=a.cap)
         if val < state["best"]:
-            state["best"], state["v"] = val, v
+            state["best"], state["v"], state["w"] = val, v, w
             zones, n_ok, n = tally(rows)
             rec = {
                 "evaluation": state["n"], "cpu_s": round(time.process_time() - t0, 1),
                 "penalty": round(val, 4), "zones_within": zones, "of": len(rows),
                 "numbers_within": n_ok, "numbers": n, "knots": a.knots, "seed": a.seed,
-                "vector": [round(float(x), 6) for x in v],
+                "param": a.param, "vector": [round(float(x), 6) for x in w],
             }  # fmt: skip
+            if feats:
+                rec["features"] = {k: round(x, 6) for k, x in feature_values(w).items()}
             with a.log.open("a") as fh:
                 fh.write(json.dumps(rec) + "\n")
             print(f"[{state['n']:6d} {rec['cpu_s']:7.1f} s] {val:9.3f} zones {zones}/"
@@ -147,14 +281,18 @@ def main() -> None:
 
     us = [np.clip((v - lo) / (hi - lo), 0.0, 1.0) for v in starts]
     rng = np.random.default_rng(a.seed)
-    n_pop = a.popsize * us[0].size
-    centre = np.array([us[i * len(us) // n_pop] for i in range(n_pop)])
-    init = np.clip(centre + a.sigma * rng.standard_normal((n_pop, us[0].size)), 0.0, 1.0)
-    for j, u in enumerate(us):
-        init[j * n_pop // len(us)] = u
+    n_pop = a.popsize * lo.size
+    if us:
+        centre = np.array([us[i * len(us) // n_pop] for i in range(n_pop)])
+        init = np.clip(centre + a.sigma * rng.standard_normal((n_pop, lo.size)), 0.0, 1.0)
+        for j, u in enumerate(us):
+            init[j * n_pop // len(us)] = u
+    else:  # no start: the whole box (a Latin hypercube)
+        init = (rng.permuted(np.tile(np.arange(n_pop), (lo.size, 1)), axis=1).T
+                + rng.random((n_pop, lo.size))) / n_pop  # fmt: skip
     if a.minutes > 0:  # --minutes 0: Powell from the (first) start alone
         de = differential_evolution(
-            f, [(0.0, 1.0)] * us[0].size, init=init, maxiter=100000, seed=a.seed, polish=False,
+            f, [(0.0, 1.0)] * lo.size, init=init, maxiter=100000, seed=a.seed, polish=False,
             tol=0.0, mutation=(0.4, 0.9), recombination=0.7,
             callback=lambda *_: time.monotonic() - w0 > 60 * a.minutes,
         )  # fmt: skip
@@ -163,7 +301,7 @@ def main() -> None:
     else:
         f(us[0])
     w1 = time.monotonic()
-    u_best = np.clip((state["v"] - lo) / (hi - lo), 0.0, 1.0)
+    u_best = np.clip((state["w"] - lo) / (hi - lo), 0.0, 1.0)
 
     class _Stop(Exception):
         pass
@@ -180,7 +318,8 @@ def main() -> None:
     opts = FitOptions(plausibility=False, tolerances=TOL)
     doc = report(kind, v, opts)
     doc |= {
-        "reproduction": True, "plausibility_terms": False, "knots": a.knots,
+        "reproduction": True, "plausibility_terms": False,
+        "knots": "features" if feats else a.knots,
         "tolerances": {"length": TOL.length, "pressure": TOL.pressure, "share": TOL.share,
                        "implied_shares": TOL.implied_shares},
         "fit": "benchmarks/fit_k22.py", "penalty": state["best"], "margin": MARGIN,
@@ -190,6 +329,12 @@ def main() -> None:
         "generations": state.get("generations", 0),
         "cpu_seconds": round(time.process_time() - t0, 1),
     }  # fmt: skip
+    if feats:
+        doc["parametrisation"] = {
+            "name": "features", "fit": "benchmarks/fit_k22.py --param features",
+            "features": feature_values(state["w"]),
+            "units": {f[0]: f[4] for f in FEATURES},
+        }  # fmt: skip
     path = a.out / f"calibration_{kind}_k22{a.tag}.json"
     path.write_text(json.dumps(doc, indent=1))
     print(f"-> {path} (zones within {tally(rows_of(kind, v))[0]})")

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import itertools
 import json
 from pathlib import Path
 
@@ -52,6 +53,15 @@ def departures(doc: dict) -> list[str]:
         inside = (lo is None or v >= lo) and (hi is None or v <= hi)
         bound = f">= {lo:g}" if hi is None else f"<= {hi:g}" if lo is None else f"{lo:g}-{hi:g}"
         out.append(f"{key} {v:.3g} ({'within' if inside else 'OUTSIDE'} the limit {bound})")
+    feats = (doc.get("parametrisation") or {}).get("features")
+    if feats:  # a feature ski (benchmarks/fit_k22.py --param features): its EI levels
+        levels = [feats[k] for k in ("ei_tail", "ei_rear", "ei_mid", "ei_front", "ei_tip")]
+        ratio = max(max(a, b) / min(a, b) for a, b in itertools.pairwise(levels))
+        out.append(
+            "EI levels tail/rear contact/middle/front contact/tip "
+            + "/".join(f"{e:.0f}" for e in levels)
+            + f" N m², largest ratio between neighbouring levels {ratio:.1f}x"
+        )
     step, peaks = _ei_shape(doc)
     out.append(
         f"EI {pr['ei_min_n_m2']:.0f}-{pr['ei_max_n_m2']:.0f} N m², {peaks} peak(s), largest "
@@ -63,21 +73,38 @@ def departures(doc: dict) -> list[str]:
     return out
 
 
+def _shape_text(doc: dict) -> str:
+    """How the ski is made: spline knots, or the features of ``fit_k22.py --param features``."""
+    kind = doc["ski"]
+    feats = (doc.get("parametrisation") or {}).get("features")
+    if not feats:
+        return (
+            f"a spline {kind} ski (log EI at {len(doc['ei_knots_m'])} knots, free camber at "
+            f"{len(doc['camber_knots_m'])} knots, PCHIP; skisnow.ski._spline)"
+        )
+    f = {k: v * 1e3 for k, v in feats.items()}  # m -> mm, mm -> um
+    return (
+        f"a feature {kind} ski (benchmarks/fit_k22.py --param features: {len(feats)} features "
+        f"of where it stands on the bench; unloaded on the stone it rests on {f['p_rear']:+.0f} "
+        f"and {f['p_front']:+.0f} mm, its glide zones flat to within {f['c_rear']:.0f} and "
+        f"{f['c_front']:.0f} um over +-{f['g_rear']:.0f} and +-{f['g_front']:.0f} mm about "
+        f"them, a kick arch {feats['h_arch']:.2f} mm above its higher end; EI PCHIP in log "
+        "through five levels; sampled on 10 mm EI and 5 mm camber knots, skisnow.ski._spline)"
+    )
+
+
 def _reproduction_text(doc: dict) -> str:
     kind, rows = doc["ski"], doc["captions"]
     n_ok = sum(r["ok"] for r in rows)
     text = (
-        f"REPRODUCTION ski {kind}-k22 (issue 30): a spline {kind} ski (log EI at "
-        f"{len(doc['ei_knots_m'])} knots, free camber at {len(doc['camber_knots_m'])} knots, "
-        "PCHIP; skisnow.ski._spline), 44 mm wide, fitted to the captions of Kalliorinne et al. "
-        "(2023), Figs. 4-7, ALONE, on the beam route (beam on the rigid plane -> rigid profile "
-        "-> strip half-space, E_base 900 MPa, nu 0.3), aiming at every length and mean pressure "
-        "within 10 %, load shares within 3 points including the shares Figs. 4 and 7 imply, "
-        f"patch counts exact; reached on the beam route: {n_ok}/{len(rows)} zones within all "
-        "of these (`skisnow captions`). It is made to reproduce the paper's numbers; it is NOT "
-        "a plausible ski. Where it leaves what is reported for real skis: "
-        + "; ".join(departures(doc))
-        + "."
+        f"REPRODUCTION ski {kind}-k22 (issue 30): {_shape_text(doc)}, 44 mm wide, fitted to "
+        "the captions of Kalliorinne et al. (2023), Figs. 4-7, ALONE, on the beam route (beam "
+        "on the rigid plane -> rigid profile -> strip half-space, E_base 900 MPa, nu 0.3), "
+        "aiming at every length and mean pressure within 10 %, load shares within 3 points "
+        "including the shares Figs. 4 and 7 imply, patch counts exact; reached on the beam "
+        f"route: {n_ok}/{len(rows)} zones within all of these (`skisnow captions`). It is made "
+        "to reproduce the paper's numbers; it is NOT a plausible ski. Where it leaves what is "
+        "reported for real skis: " + "; ".join(departures(doc)) + "."
     )
     if doc["kick_zone_m"]:
         a, b = doc["kick_zone_m"]
