@@ -162,6 +162,30 @@ def feature_vector(kind: str, w: np.ndarray) -> np.ndarray:
     return np.concatenate([log_ei, z[free]])
 
 
+#: ``--bump``: a smooth bump added to z0 (cos², height d [µm], half-width [m], centre [m]),
+#: optimised with the knots; the ski then carries z0 on the 5 mm grid of :func:`feature_knots`.
+BUMP_BOUNDS = ((0.40, 0.75), (0.008, 0.06), (-60.0, 60.0))
+
+
+def bump_vector(kind: str, base: tuple, w: np.ndarray) -> np.ndarray:
+    """A knot vector on ``base`` knots plus (centre, half-width, height) of a bump, as a
+    parameter vector on the 5 mm camber grid (EI on the same knots as ``base``)."""
+    ek, zk, pins = base
+    _, gk, _ = feature_knots(kind)
+    gk = np.array(gk)
+    gpins = tuple(int(np.argmin(np.abs(gk - zk[p]))) for p in pins)
+    n_e = len(ek)
+    z = np.zeros(len(zk))
+    z[[k for k in range(len(zk)) if k not in pins]] = w[n_e:-3]
+    xd, half, d_um = w[-3:]
+    t = np.clip((gk - xd) / half, -1.0, 1.0)
+    zg = PchipInterpolator(np.array(zk), z)(gk) + d_um * 1e-3 * np.cos(0.5 * np.pi * t) ** 2
+    za, zb = zg[gpins[0]], zg[gpins[1]]
+    zg = zg - (za + (zb - za) * (gk - gk[gpins[0]]) / (gk[gpins[1]] - gk[gpins[0]]))
+    free = [k for k in range(gk.size) if k not in gpins]
+    return np.concatenate([w[:n_e], zg[free]])
+
+
 def rows_of(kind: str, v: np.ndarray) -> list:
     """The caption rows (beam route) of the ski of parameter vector ``v``."""
     ski = make_ski(kind, v)
@@ -222,6 +246,13 @@ def main() -> None:
         default=[],
         help="calibration record(s); with --param features: feature files (JSON)",
     )
+    ap.add_argument(
+        "--bump",
+        type=float,
+        nargs=3,
+        metavar=("CENTRE_M", "HALF_M", "HEIGHT_UM"),
+        help="with --param knots: optimise a cos² bump on z0 too, from this start",
+    )
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--popsize", type=int, default=6)
     ap.add_argument("--sigma", type=float, default=0.03, help="start cloud, fraction of box")
@@ -249,6 +280,15 @@ def main() -> None:
         lo = np.minimum(lo, np.min(starts, axis=0))
         hi = np.maximum(hi, np.max(starts, axis=0))
         to_v = lambda w: w  # noqa: E731
+        if a.bump:  # the knots of the run, then the 5 mm camber grid for the ski
+            base = KNOTS[kind]
+            _, gk, _ = feature_knots(kind)
+            KNOTS[kind] = (base[0], gk, tuple(int(np.argmin(np.abs(np.array(gk) - base[1][p])))
+                                              for p in base[2]))  # fmt: skip
+            starts = [np.concatenate([v, a.bump]) for v in starts]
+            lo = np.concatenate([lo, [b[0] for b in BUMP_BOUNDS]])
+            hi = np.concatenate([hi, [b[1] for b in BUMP_BOUNDS]])
+            to_v = lambda w: bump_vector(kind, base, w)  # noqa: E731
     state = {"n": 0, "best": math.inf, "v": starts[0]}
     t0 = time.process_time()
     w0 = time.monotonic()
@@ -319,7 +359,7 @@ def main() -> None:
     doc = report(kind, v, opts)
     doc |= {
         "reproduction": True, "plausibility_terms": False,
-        "knots": "features" if feats else a.knots,
+        "knots": "features" if feats else a.knots + ("+bump, camber on 5 mm" if a.bump else ""),
         "tolerances": {"length": TOL.length, "pressure": TOL.pressure, "share": TOL.share,
                        "implied_shares": TOL.implied_shares},
         "fit": "benchmarks/fit_k22.py", "penalty": state["best"], "margin": MARGIN,
@@ -329,6 +369,9 @@ def main() -> None:
         "generations": state.get("generations", 0),
         "cpu_seconds": round(time.process_time() - t0, 1),
     }  # fmt: skip
+    if a.bump:
+        doc["bump"] = dict(zip(("centre_m", "half_width_m", "height_um"),
+                               map(float, state["w"][-3:]), strict=True))  # fmt: skip
     if feats:
         doc["parametrisation"] = {
             "name": "features", "fit": "benchmarks/fit_k22.py --param features",

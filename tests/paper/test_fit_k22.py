@@ -48,3 +48,75 @@ def test_the_penalty_is_the_small_quadratic_inside_the_margin_and_saturates_with
     assert capped == pytest.approx(0.1 * 4 + 10 * (2 - mod.MARGIN) ** 2) and far > 100 * capped
     assert mod.penalty([], 1) == pytest.approx(9.0)  # a wrong patch count
     assert np.isfinite(mod.penalty([1e3], 2, cap=2.0))
+
+
+def _feature_ski(mod, features: dict):  # type: ignore[no-untyped-def]
+    from skisnow.calibrate import make_ski
+    from skisnow.calibrate._params import KNOTS
+
+    saved = KNOTS["classic"]
+    KNOTS["classic"] = mod.feature_knots("classic")
+    try:
+        return make_ski("classic", mod.feature_vector("classic", mod.feature_start(features)))
+    finally:
+        KNOTS["classic"] = saved
+
+
+def test_a_feature_ski_stands_on_the_bench_where_its_features_put_it() -> None:
+    """The fifth pass's parametrisation (--param features): the unloaded ski rests on the
+    stone at its two contact features (every camber control value >= 0, PCHIP keeps the
+    shape), EI is positive and takes its five levels at their knots, and a feature file
+    round-trips through the optimisation scale."""
+    from skisnow.ski import solve_beam
+
+    mod = _script()
+    feats = json.loads(
+        (ROOT / "benchmarks/calibration/start_classic_k22_features_hand.json").read_text()
+    )
+    w = mod.feature_start(feats)
+    assert mod.feature_values(w) == pytest.approx(feats)
+    lo, hi = mod.feature_bounds()
+    assert np.all((lo <= w) & (w <= hi))
+    ski = _feature_ski(mod, feats)
+    x = np.linspace(ski.x_tail, ski.x_tip, 2001)
+    z0 = ski.free_camber(x)
+    assert z0.min() > -1e-9  # resting on the plane
+    for key in ("p_rear", "p_front"):  # the plane touches there, and nowhere between
+        assert ski.free_camber(feats[key]) < 2e-6
+    between = (x > feats["p_rear"] + 0.02) & (x < feats["p_front"] - 0.02)
+    assert z0[between].min() > 1e-6
+    # a light load on the bench: the ski stands on its two contact features (5 mm grid)
+    sol = solve_beam(ski, mass=0.5, load_position=-0.12)
+    touching = [0.5 * (a + b) for a, b in sol.contact_intervals]
+    assert min(abs(t - feats["p_rear"]) for t in touching) <= 0.005 + 1e-9
+    assert min(abs(t - feats["p_front"]) for t in touching) <= 0.005 + 1e-9
+    ei = ski.stiffness(np.array([ski.x_tail, feats["p_rear"], 0.0, feats["p_front"], ski.x_tip]))
+    want = [feats[k] for k in ("ei_tail", "ei_rear", "ei_mid", "ei_front", "ei_tip")]
+    assert np.all(ski.stiffness(x) > 0)
+    assert ei == pytest.approx(want, rel=0.02)  # PCHIP through PCHIP sampled every 10 mm
+
+
+def test_a_bump_of_zero_height_is_the_knot_ski_and_a_bump_lifts_z0_by_its_height() -> None:
+    """--bump: the knot ski resampled on the 5 mm grid is the same ski; a bump adds its height
+    at its centre (away from the pinned knots, the resting line unchanged)."""
+    from skisnow.calibrate import make_ski, record_vector
+    from skisnow.calibrate._params import KNOTS
+
+    mod = _script()
+    doc = json.loads((ROOT / "benchmarks/calibration/calibration_skate_k22_v4.json").read_text())
+    base = KNOTS["skate"]
+    v = record_vector("skate", doc)
+    plain = make_ski("skate", v)
+    gk = mod.feature_knots("skate")[1]
+    pins = tuple(int(np.argmin(np.abs(np.array(gk) - base[1][p]))) for p in base[2])
+    KNOTS["skate"] = (base[0], gk, pins)
+    try:
+        flat = make_ski("skate", mod.bump_vector("skate", base, np.r_[v, 0.57, 0.02, 0.0]))
+        bumped = make_ski("skate", mod.bump_vector("skate", base, np.r_[v, 0.57, 0.02, 20.0]))
+    finally:
+        KNOTS["skate"] = base
+    x = np.array(gk)
+    assert np.max(np.abs(flat.free_camber(x) - plain.free_camber(x))) < 1e-9
+    assert bumped.free_camber(0.57) - flat.free_camber(0.57) == pytest.approx(20e-6, rel=1e-6)
+    far = np.abs(x - 0.57) > 0.02 + 1e-9
+    assert np.max(np.abs(bumped.free_camber(x[far]) - flat.free_camber(x[far]))) < 1e-12
