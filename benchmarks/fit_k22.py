@@ -22,6 +22,30 @@ count of zones within asks); every improvement is appended to ``--log``
 (JSON lines: evaluation, CPU seconds, penalty, zones and numbers within, the vector), so a run
 stopped at its wall budget loses nothing. The record written (``--out``) is a calibration
 record that ``skisnow calibrate --write-shipped`` turns into the reproduction ski.
+
+Fifth pass, two more parametrisations (docs/validation/paper-reproduction.md):
+
+* ``--param features`` (classic): the ski from 25 features of where it stands on the bench
+  (:data:`FEATURES`: the unloaded rear and front contacts on the stone, each glide zone's
+  half-length and crown, the flanks behind and ahead of them, the kick arch's apex and height,
+  the tail and tip heights; five EI levels, at the tail, the two contacts, a middle plateau
+  whose ends are features, and the tip), sampled on 10 mm EI and 5 mm camber knots that hold
+  the default knots, so the record is read as any other; a start is a feature file (JSON)::
+
+      nice -n 10 uv run python benchmarks/fit_k22.py --ski classic --param features \
+          --start benchmarks/calibration/start_classic_k22_features_b.json \
+          --start benchmarks/calibration/start_classic_k22_features_hand.json --sigma 0.15 \
+          --popsize 6 --minutes 25 --seed 52 \
+          --log benchmarks/calibration/fit_k22_classic_features.jsonl
+
+* ``--bump CENTRE HALF HEIGHT`` (with the knots): a cos² bump of z0 (centre [m], half-width
+  [m], height [µm], :data:`BUMP_BOUNDS`) optimised with the knot values; the ski carries z0 on
+  the 5 mm grid::
+
+      nice -n 10 uv run python benchmarks/fit_k22.py --ski skate \
+          --start benchmarks/calibration/calibration_skate_k22_v4.json --bump 0.54 0.015 25 \
+          --sigma 0.03 --popsize 5 --minutes 12 --powell-minutes 4 --seed 61 \
+          --log benchmarks/calibration/fit_k22_skate_bump.jsonl --tag _v5
 """
 
 from __future__ import annotations
