@@ -120,3 +120,41 @@ def test_a_bump_of_zero_height_is_the_knot_ski_and_a_bump_lifts_z0_by_its_height
     assert bumped.free_camber(0.57) - flat.free_camber(0.57) == pytest.approx(20e-6, rel=1e-6)
     far = np.abs(x - 0.57) > 0.02 + 1e-9
     assert np.max(np.abs(bumped.free_camber(x[far]) - flat.free_camber(x[far]))) < 1e-12
+
+
+def test_a_feature_record_ships_as_the_same_ski_and_says_where_it_stands(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    """A record of --param features through ``skisnow calibrate --write-shipped``'s writer: the
+    ski file is the fitted ski (z0 and EI on its knots) and its description states the
+    contact features and the EI levels."""
+    from skisnow.calibrate import FitOptions, make_ski, report, write_shipped
+    from skisnow.calibrate._params import KNOTS
+    from skisnow.paper import REPRODUCTION_TOLERANCES
+    from skisnow.ski import read_ski
+
+    mod = _script()
+    feats = json.loads(
+        (ROOT / "benchmarks/calibration/start_classic_k22_features_hand.json").read_text()
+    )
+    saved = KNOTS["classic"]
+    KNOTS["classic"] = mod.feature_knots("classic")
+    try:
+        v = mod.feature_vector("classic", mod.feature_start(feats))
+        fitted = make_ski("classic", v)
+        doc = report(
+            "classic", v, FitOptions(plausibility=False, tolerances=REPRODUCTION_TOLERANCES)
+        )
+    finally:
+        KNOTS["classic"] = saved
+    doc |= {
+        "reproduction": True, "fit": "benchmarks/fit_k22.py", "margin": mod.MARGIN, "seed": 0,
+        "popsize": 1, "evaluations": 1, "generations": 0, "knots": "features",
+        "parametrisation": {"name": "features", "features": feats},
+    }  # fmt: skip
+    ski = read_ski(write_shipped(doc, tmp_path / "classic-k22.json"))
+    x = np.linspace(ski.x_tail, ski.x_tip, 801)
+    assert np.max(np.abs(ski.free_camber(x) - fitted.free_camber(x))) < 2e-7  # z0 at 0.1 µm
+    assert ski.stiffness(x) == pytest.approx(fitted.stiffness(x), rel=1e-3)
+    assert "rests on -400 and +500 mm" in ski.description
+    assert "EI levels tail/rear contact/middle/front contact/tip 300/1000/4000/1000/300" in (
+        ski.description
+    )
