@@ -141,10 +141,13 @@ def contact_error(ski, true) -> float:
 
 
 def run_one(args: tuple) -> dict:
-    name, plan, noise_um, cache, with_contact, dx_mm, n_stiffness, criterion, plain, boot = args
+    name, plan, noise_um, cache, with_contact, dx_mm, n_stiffness, criterion, plain, boot, extra = (
+        args
+    )
     from skisnow.identify import identify_ski
 
     kw: dict = {} if n_stiffness is None else {"n_stiffness": n_stiffness}
+    kw.update(extra)
     if criterion is not None:
         kw["criterion"] = criterion
     if plain:
@@ -162,7 +165,10 @@ def run_one(args: tuple) -> dict:
            "misfit": res.misfit, "exit": 0 if res.converged else 3, "cpu": cpu, "wall": wall,
            "causes": ",".join(res.causes), "mesh_um": res.mesh_error[0] * 1e6,
            "held_out": held_out(res.ski, true), "lam": res.regularisation,
-           "criterion": res.criterion}  # fmt: skip
+           "criterion": res.criterion, "model_um": res.model_error[0] * 1e6,
+           "delta": res.model_error[1], "bound_sigma": float(np.sqrt(res.chi2_bound / res.n_bins)),
+           # the exit of the rule before issue 25's sixth pass: χ² within the noise-only bound
+           "exit_old": 0 if res.at_noise and res.mesh_error[0] <= res.noise / 5 else 3}  # fmt: skip
     if boot:
         from skisnow.identify import bootstrap_bands
 
@@ -219,6 +225,9 @@ def main() -> None:
                     "(skisnow.identify.bootstrap_bands; z0 and, for the table, EI)")  # fmt: skip
     ap.add_argument("--dx-mm", type=float, default=1.0,
                     help="grid of the reference bench [mm] (issue 25: 1 mm)")  # fmt: skip
+    ap.add_argument("--identify-kw", default="{}",
+                    help='further keyword arguments of identify_ski as JSON, e.g. '
+                    '\'{"stiffness_penalty": "huber"}\'')  # fmt: skip
     a = ap.parse_args()
     skis = [*map(str, VALIDATION_SEEDS), "issue25"] if a.validation else _skis(a.skis)
     jobs = [
@@ -233,6 +242,7 @@ def main() -> None:
             a.criterion,
             a.no_smoothing_bands,
             a.bootstrap,
+            json.loads(a.identify_kw),
         )
         for s in skis
         for p in a.plans
@@ -253,6 +263,9 @@ def main() -> None:
         "held_out",
         "misfit",
         "exit",
+        "exit_old",
+        "model_um",
+        "bound_sigma",
         "cpu",
         "wall",
         "mesh_um",

@@ -148,6 +148,7 @@ def identify(
         "mesh_mm": res.mesh_error[2] * 1e3,
         "mesh_error_rms_um": res.mesh_error[0] * 1e6,
         "mesh_error_max_um": res.mesh_error[1] * 1e6,
+        "model_error_rms_um": res.model_error[0] * 1e6,
         "determined_ei_mm": res.ski.provenance.detail("determined_ei_mm"),
         "determined_z0_mm": res.ski.provenance.detail("determined_z0_mm"),
         "bands": "95 % = 2 sd of the Laplace posterior (noise, prior, discretisation error)"

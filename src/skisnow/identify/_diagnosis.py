@@ -12,14 +12,33 @@ main cause; every one that applies is listed):
   or the load cases' own misfits are not at their noise (some above 1.5 σ while the rest are
   at the noise: their noise is underestimated, or they hold readings the others do not);
 * ``evaluations``: the fit stopped at its evaluation limit above the noise (``max_nfev``);
-* ``model``: the fit ends above the noise with none of the above: a local minimum of the
-  misfit, or a ski the splines cannot follow (``n_stiffness``, ``n_camber``);
+* ``model``: the fit ends above the noise with none of the above, and its systematic part
+  is larger than the allowance below: a local minimum of the misfit, or a ski the splines
+  cannot follow (``n_stiffness``, ``n_camber``);
+* ``model-error`` (a note, not a failure): the fit ends above the noise, but its χ² is within
+  the bound of σ_eff² = σ² + δ², δ the systematic error the residuals themselves show
+  (:func:`correlated_excess`: their correlation between neighbouring bins, which the noise
+  does not have), and δ is at most :data:`MODEL_ERROR_MAX` of the noise; the summary states
+  δ;
 * ``information`` (a warning, not a failure): the bench leaves parts of the ski undetermined
   — where no load case bends it (beyond the outermost contacts) or no station measures it;
   the warning names the span and the load cases that would add the information.
 
 At the noise but stopped by the evaluation limit the fit is converged (the limit is said in its
 message, no warning): a fit at the noise is what the data can tell.
+
+Why the allowance (issue 25, sixth pass). On a full plan (39 cases, ~16,000 bins) the
+discrepancy bound is 1.004 σ in the misfit, and the fit started at the *true* ski ends at
+1.053-1.061 σ: the bench holds a systematic error of about a third of the noise that no fit of
+the model removes (the reference bench's own contact resolution, the 60-coefficient log-EI
+basis at sharp stiffness steps). The old rule called that ``model`` — "a local minimum" — and
+exited 3 on every full plan. A systematic error is smooth along the ski, the bench noise is
+not: the residuals' covariance between neighbouring bins estimates δ² without using their size
+(a noise given 10 times too small scales both χ² and δ² by 100, and fails the cap; white excess
+from a misestimated noise raises χ² but not δ²). The cap, δ ≤ (1.1² - 1)^1/2 σ = 0.46 σ, is the
+issue's own "reaches the noise: misfit ≤ 1.1 σ". What the rule cannot do is tell a local minimum
+whose residuals are smooth and within the cap from a model error of that size: both explain the
+bench to the noise plus δ, which the summary states.
 """
 
 from __future__ import annotations
@@ -28,7 +47,37 @@ from collections.abc import Sequence
 
 import numpy as np
 
-__all__ = ["Diagnosis", "diagnose"]
+__all__ = ["MODEL_ERROR_MAX", "Diagnosis", "correlated_excess", "diagnose"]
+
+#: The largest systematic error, as a fraction of the noise, that a fit may carry and still be
+#: converged (module docstring): (1.1² - 1)^1/2, issue 25's "misfit ≤ 1.1 σ".
+MODEL_ERROR_MAX = float(np.sqrt(1.1**2 - 1.0))
+
+
+def correlated_excess(residuals: np.ndarray, sizes: Sequence[int]) -> float:
+    """The systematic part δ² of σ-normalised residuals (in units of σ²): from their mean
+    products between bins one and two apart in the same load case (the lag-one and lag-two
+    autocovariances c₁, c₂, pooled over the cases), extrapolated to lag zero,
+    δ² = (4 c₁ - c₂) / 3, clipped at 0.
+
+    Residuals r = e + ε of a smooth error e (correlated over many bins: a model or bench error
+    along the ski) and independent noise ε of unit variance have E[r_i r_(i+k)] = c_e(k), the
+    noise adding nothing at k ≥ 1, while E[r_i²] = c_e(0) + 1 (the sample autocovariance, Box &
+    Jenkins 1976, §2.1; the noise is the nugget of the residuals' variogram, Cressie 1993,
+    §2.3.1). A smooth error's autocovariance is c_e(0) (1 - a k²) near zero lag, which the
+    extrapolation removes (a sine of 12 bins' wavelength: c₁ alone 0.87 c_e(0), the
+    extrapolation 0.99). Its standard error under pure noise is about 1.4 (number of
+    pairs)^-1/2."""
+    r = np.asarray(residuals, dtype=float)
+    cuts = np.cumsum(sizes)[:-1]
+    c1 = c2 = 0.0
+    n1 = n2 = 0
+    for part in np.split(r, cuts):
+        if part.size >= 3:
+            c1 += float(part[:-1] @ part[1:])
+            c2 += float(part[:-2] @ part[2:])
+            n1, n2 = n1 + part.size - 1, n2 + part.size - 2
+    return max(0.0, (4.0 * c1 / n1 - c2 / n2) / 3.0) if n2 else 0.0
 
 
 class Diagnosis:
@@ -65,12 +114,17 @@ def diagnose(
     ei_determined: np.ndarray,
     bent: tuple[float, float],
     cases: Sequence[tuple[float, float]],
+    model_error2: float = 0.0,
+    n_bins: int = 0,
 ) -> Diagnosis:
     """The diagnosis of a fit (module docstring). ``case_misfits``: ``(mass [kg], x_m [m],
     misfit σ)`` per load case; ``bent``: the span between the outermost contact points of the
     bench [m] (beyond it no bench can bend a ski: not a want of information, no warning);
-    ``cases``: ``(mass, x_m)`` of the bench."""
-    at_noise = chi2 <= bound
+    ``cases``: ``(mass, x_m)`` of the bench; ``model_error2``: δ² of :func:`correlated_excess`
+    (σ² units) and ``n_bins`` the bins it was measured on (0: no allowance, the bound alone)."""
+    delta = float(np.sqrt(max(model_error2, 0.0)))
+    within_model = chi2 > bound and delta <= MODEL_ERROR_MAX and chi2 <= bound + n_bins * delta**2
+    at_noise = chi2 <= bound or within_model
     mesh_ok = mesh_rms <= noise / 5.0
     warnings: list[str] = []
     causes: list[str] = []
@@ -120,6 +174,16 @@ def diagnose(
             f"the fit ended at {misfit:.3g} σ (χ² {chi2:.0f}, above the discrepancy bound "
             f"{bound:.0f}): a local minimum of the misfit, or a ski the splines cannot follow "
             "(more coefficients: --n-stiffness / --n-camber)"
+        )
+    if within_model:
+        causes.append("model-error")
+        warnings.append(
+            f"stated model error: the fit ends at {misfit:.3g} σ (χ² {chi2:.0f}, above the "
+            f"noise-only bound {bound:.0f}) with a systematic error of {delta * noise * 1e6:.2g} "
+            f"µm rms ({delta:.2f} σ) in its residuals, within the allowance of "
+            f"{MODEL_ERROR_MAX:.2f} σ: the bench is explained to its noise plus that error (the "
+            "bench's own resolution, a stiffness step the splines smooth, or a shallow local "
+            "minimum of that size)"
         )
     inside = (ei_x > bent[0] + 0.02) & (ei_x < bent[1] - 0.02)
     spans = [  # stretches of 40 mm or more inside the span a bench can bend

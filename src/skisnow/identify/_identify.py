@@ -46,7 +46,7 @@ from skisnow.identify._bands import (
     smoothing_bias,
 )
 from skisnow.identify._cases import _bench_cases, load_cases
-from skisnow.identify._diagnosis import diagnose
+from skisnow.identify._diagnosis import correlated_excess, diagnose
 from skisnow.identify._fit import fit_bench
 from skisnow.identify._mesh_error import mesh_error
 from skisnow.identify._model import _Problem
@@ -302,12 +302,14 @@ def identify_ski(
         case_misfit.append((c.mass, c.position, float(np.sqrt(np.mean(rk**2)))))
     masses = sorted({c.mass for c in cases})
     positions = sorted({round(c.position * 1e3, 6) for c in cases})
+    # the systematic part of the residuals (σ² units): what a σ_eff² = σ² + δ² allows
+    delta2 = correlated_excess(r, [c.x.size for c in cases])
     diag = diagnose(
         chi2=chi2, bound=fitted.chi2_bound, misfit=float(sol.misfit_rms), lm_status=sol.status,
         noise=problem.sigma, noise_given=noise, noise_data=float(estimate.pooled),
         case_misfits=case_misfit, mesh_rms=merr.rms, element_length=merr.element_length,
         ei_x=prof.ex, ei_determined=prof.ei_determined, bent=bent,
-        cases=[(c.mass, c.position) for c in cases],
+        cases=[(c.mass, c.position) for c in cases], model_error2=delta2, n_bins=r.size,
     )  # fmt: skip
     for w in outliers:
         say(f"outlier: {w.mass:g} kg at {w.load_position * 1e3:g} mm, x = {w.x * 1e3:.0f} mm")
@@ -381,6 +383,7 @@ def identify_ski(
                 # null when it could not be estimated (a ski file holds finite numbers only)
                 ("mesh_error_rms_um", round(merr.rms * 1e6, 4) if np.isfinite(merr.rms) else None),
                 ("mesh_error_max_um", round(merr.max * 1e6, 4) if np.isfinite(merr.max) else None),
+                ("model_error_rms_um", round(float(np.sqrt(delta2)) * problem.sigma * 1e6, 4)),
                 ("outliers", len(outliers)),
                 (
                     "bands",
@@ -418,6 +421,7 @@ def identify_ski(
         outliers=tuple((o.mass, o.load_position, o.x, o.residual, o.z) for o in outliers),
         posterior_inflation=post.inflation,
         causes=diag.causes,
+        model_error=(float(np.sqrt(delta2)) * problem.sigma, float(np.sqrt(delta2))),
     )
 
 

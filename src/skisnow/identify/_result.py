@@ -66,7 +66,13 @@ class IdentificationResult:
         added to the bands (:func:`~skisnow.identify.bootstrap_bands`), None without one.
     causes
         Why the result is not better, main cause first (``'mesh'``, ``'noise'``,
-        ``'evaluations'``, ``'model'``, ``'information'``; :mod:`skisnow.identify._diagnosis`).
+        ``'evaluations'``, ``'model'``, ``'model-error'``, ``'information'``;
+        :mod:`skisnow.identify._diagnosis`).
+    model_error
+        ``(rms [m], fraction of the noise)``: the systematic error the residuals show (their
+        correlation between neighbouring bins, :func:`~skisnow.identify._diagnosis.
+        correlated_excess`); a fit above the noise-only bound is converged when its χ² is
+        within the bound of σ² + δ² and δ ≤ 0.46 σ (issue 25's misfit ≤ 1.1 σ).
     warnings
         The same in words, with what would help.
     """
@@ -95,8 +101,10 @@ class IdentificationResult:
     posterior_inflation: float = 1.0
     causes: tuple[str, ...] = ()
     bootstrap: tuple[int, float, float] | None = None
+    model_error: tuple[float, float] = (float("nan"), float("nan"))
 
     @property
     def at_noise(self) -> bool:
-        """Whether the fit explains the bench down to its noise (χ² within its bound)."""
+        """Whether the fit explains the bench down to its noise (χ² within its noise-only
+        bound, without the allowance for a stated model error)."""
         return bool(self.n_bins and self.misfit**2 * self.n_bins <= self.chi2_bound)

@@ -1,0 +1,88 @@
+"""The exit rule of the identification (issue 25, sixth pass): a fit at the noise plus a stated
+systematic error of at most 0.46 σ is converged; a noise misestimate, a larger error or a fit
+stopped far off is not. The systematic part is estimated from the residuals' correlation between
+neighbouring bins (:func:`skisnow.identify._diagnosis.correlated_excess`), not from their size."""
+
+from __future__ import annotations
+
+import re
+
+import numpy as np
+import pytest
+
+from skisnow.identify._diagnosis import MODEL_ERROR_MAX, correlated_excess, diagnose
+
+#: a full plan's size: 39 load cases of 414 bins (issue 25's ski: 16,146 bins)
+_CASES, _BINS = 39, 414
+
+
+def _residuals(delta: float, scale: float = 1.0, seed: int = 0) -> np.ndarray:
+    """σ-normalised residuals of a full plan: unit white noise plus a smooth error of rms
+    ``delta`` (a sum of sines along each case, wavelengths 60-400 mm at 5 mm bins, as a
+    bench's contact error or a smoothed stiffness step), all times ``scale`` (a noise given
+    ``1 / scale`` times too small)."""
+    rng = np.random.default_rng(seed)
+    x = np.arange(_BINS) * 0.005
+    parts = []
+    for _ in range(_CASES):
+        e = sum(
+            np.sin(2 * np.pi * x / lam + rng.uniform(0, 2 * np.pi)) for lam in (0.06, 0.15, 0.4)
+        )
+        e *= delta / np.sqrt(np.mean(e**2))
+        parts.append(scale * (e + rng.standard_normal(_BINS)))
+    return np.concatenate(parts)
+
+
+def test_the_correlated_excess_estimates_a_smooth_error_and_ignores_noise() -> None:
+    sizes = [_BINS] * _CASES
+    se = 1.4 / np.sqrt(_CASES * (_BINS - 1))  # standard error under pure noise
+    for seed in range(5):
+        assert correlated_excess(_residuals(0.0, seed=seed), sizes) <= 4 * se
+        # a smooth error of 0.3 σ: δ² = 0.09 within its standard error, while the white excess
+        # of a noise 1.2 times too small (χ² 1.44 n) adds nothing to it
+        assert correlated_excess(_residuals(0.3, seed=seed), sizes) == pytest.approx(
+            0.09, abs=4 * se + 0.01
+        )
+        assert correlated_excess(_residuals(0.0, scale=1.2, seed=seed), sizes) <= 4 * se
+
+
+def _diagnosis(r: np.ndarray, *, lm_status: int = 1, noise_given: float | None = None):
+    n = r.size
+    dof = float(n)  # residuals of no fit: their χ² at the noise has the mean n
+    chi2 = float(r @ r)
+    return diagnose(
+        chi2=chi2, bound=dof + 2 * np.sqrt(2 * dof), misfit=float(np.sqrt(chi2 / n)),
+        lm_status=lm_status, noise=5e-6, noise_given=noise_given, noise_data=5e-6,
+        case_misfits=[(10.0 * (k + 1), -0.12, 1.0) for k in range(_CASES)], mesh_rms=1e-7,
+        element_length=0.01, ei_x=np.linspace(-0.9, 0.9, 91), ei_determined=np.ones(91, bool),
+        bent=(-0.8, 0.8), cases=[(10.0 * (k + 1), -0.12) for k in range(_CASES)],
+        model_error2=correlated_excess(r, [_BINS] * _CASES), n_bins=n,
+    )  # fmt: skip
+
+
+def test_a_fit_at_the_noise_plus_a_stated_model_error_is_converged() -> None:
+    # 0.3 σ of smooth error: misfit ~1.04 σ, above the noise-only bound (~1.004 σ) — exit 3 by
+    # the old rule, exit 0 now with the error stated (~1.5 µm of a 5 µm noise)
+    d = _diagnosis(_residuals(0.3, seed=1))
+    assert d.converged and d.causes == ("model-error",)
+    stated = float(re.search(r"systematic error of ([0-9.]+) µm rms", d.warnings[0]).group(1))
+    assert stated == pytest.approx(1.5, abs=0.15)
+
+
+@pytest.mark.parametrize(
+    ("delta", "scale", "lm_status", "noise_given", "cause"),
+    [
+        (0.6, 1.0, 1, None, "model"),  # a systematic error above the cap (misfit ~1.17 σ)
+        (0.3, 1.25, 1, None, "model"),  # white excess: the noise 1.25 times underestimated
+        (0.3, 10.0, 1, 0.5e-6, "noise"),  # σ given 10 times too small: δ = 3 σ_given
+        (0.9, 1.0, 0, None, "evaluations"),  # stopped by the evaluation limit far off
+    ],
+)
+def test_what_the_allowance_does_not_excuse(delta, scale, lm_status, noise_given, cause) -> None:
+    d = _diagnosis(_residuals(delta, scale, seed=2), lm_status=lm_status, noise_given=noise_given)
+    assert not d.converged
+    assert d.causes[0] == cause and "model-error" not in d.causes
+
+
+def test_the_cap_is_the_issues_misfit_of_1_1_sigma() -> None:
+    assert np.sqrt(1.0 + MODEL_ERROR_MAX**2) == pytest.approx(1.1)
