@@ -10,7 +10,12 @@ import re
 import numpy as np
 import pytest
 
-from skisnow.identify._diagnosis import MODEL_ERROR_MAX, correlated_excess, diagnose
+from skisnow.identify._diagnosis import (
+    MODEL_ERROR_MAX,
+    correlated_excess,
+    diagnose,
+    noise_bound,
+)
 
 #: a full plan's size: 39 load cases of 414 bins (issue 25's ski: 16,146 bins)
 _CASES, _BINS = 39, 414
@@ -86,3 +91,15 @@ def test_what_the_allowance_does_not_excuse(delta, scale, lm_status, noise_given
 
 def test_the_cap_is_the_issues_misfit_of_1_1_sigma() -> None:
     assert np.sqrt(1.0 + MODEL_ERROR_MAX**2) == pytest.approx(1.1)
+
+
+def test_the_bound_with_an_estimated_noise_holds_its_level() -> None:
+    # χ² of a fit at the noise, read with σ̂ = σ e^η (η ~ N(0, s²), s = 0.8 % as on a full
+    # plan): above the bound of the estimated noise in ~2.3 % of draws (two standard deviations),
+    # while the bound of a known noise is crossed in ~12 % of them
+    rng = np.random.default_rng(3)
+    dof, s = 16000.0, 0.008
+    chi2 = rng.chisquare(dof, 20000) * np.exp(-2.0 * s * rng.standard_normal(20000))
+    assert 0.012 <= np.mean(chi2 > noise_bound(dof, s)) <= 0.035
+    assert np.mean(chi2 > dof + 2.0 * np.sqrt(2.0 * dof)) > 0.08
+    assert noise_bound(dof, 0.0) == pytest.approx(dof + 2.0 * np.sqrt(2.0 * dof))

@@ -47,11 +47,22 @@ from collections.abc import Sequence
 
 import numpy as np
 
-__all__ = ["MODEL_ERROR_MAX", "Diagnosis", "correlated_excess", "diagnose"]
+__all__ = ["MODEL_ERROR_MAX", "Diagnosis", "correlated_excess", "diagnose", "noise_bound"]
 
 #: The largest systematic error, as a fraction of the noise, that a fit may carry and still be
 #: converged (module docstring): (1.1² - 1)^1/2, issue 25's "misfit ≤ 1.1 σ".
 MODEL_ERROR_MAX = float(np.sqrt(1.1**2 - 1.0))
+
+
+def noise_bound(dof: float, noise_se: float, sigmas: float = 2.0) -> float:
+    """The discrepancy bound of χ² when σ itself is estimated: χ² computed with σ̂ = σ e^η, η
+    normal with standard deviation ``noise_se``, is χ²_σ e^(-2η), whose variance is about
+    2 dof + (2 ``noise_se`` dof)² (the delta method); the bound is its mean plus ``sigmas``
+    standard deviations, as :func:`~skisnow.identify._homotopy.restart_bound`'s. On a full plan
+    (~39,000 stations: ``noise_se`` 0.8 %) the second term is twice the first: χ² may read
+    1.7 % high from the noise estimate alone, which the noise-only bound (0.4 %) calls a
+    failure."""
+    return float(dof + sigmas * np.sqrt(2.0 * dof + (2.0 * noise_se * dof) ** 2))
 
 
 def correlated_excess(residuals: np.ndarray, sizes: Sequence[int]) -> float:
@@ -116,12 +127,19 @@ def diagnose(
     cases: Sequence[tuple[float, float]],
     model_error2: float = 0.0,
     n_bins: int = 0,
+    dof: float = float("nan"),
+    noise_se: float = 0.0,
 ) -> Diagnosis:
     """The diagnosis of a fit (module docstring). ``case_misfits``: ``(mass [kg], x_m [m],
     misfit σ)`` per load case; ``bent``: the span between the outermost contact points of the
     bench [m] (beyond it no bench can bend a ski: not a want of information, no warning);
     ``cases``: ``(mass, x_m)`` of the bench; ``model_error2``: δ² of :func:`correlated_excess`
-    (σ² units) and ``n_bins`` the bins it was measured on (0: no allowance, the bound alone)."""
+    (σ² units) and ``n_bins`` the bins it was measured on (0: no allowance, the bound alone);
+    ``dof`` the residual degrees of freedom behind ``bound`` and ``noise_se`` the standard error
+    of the log of an estimated noise (0: the noise was given), which widens the bound
+    (:func:`noise_bound`)."""
+    if noise_se > 0 and np.isfinite(dof):
+        bound = max(bound, noise_bound(dof, noise_se))
     delta = float(np.sqrt(max(model_error2, 0.0)))
     within_model = chi2 > bound and delta <= MODEL_ERROR_MAX and chi2 <= bound + n_bins * delta**2
     at_noise = chi2 <= bound or within_model
@@ -179,7 +197,7 @@ def diagnose(
         causes.append("model-error")
         warnings.append(
             f"stated model error: the fit ends at {misfit:.3g} σ (χ² {chi2:.0f}, above the "
-            f"noise-only bound {bound:.0f}) with a systematic error of {delta * noise * 1e6:.2g} "
+            f"noise's bound {bound:.0f}) with a systematic error of {delta * noise * 1e6:.2g} "
             f"µm rms ({delta:.2f} σ) in its residuals, within the allowance of "
             f"{MODEL_ERROR_MAX:.2f} σ: the bench is explained to its noise plus that error (the "
             "bench's own resolution, a stiffness step the splines smooth, or a shallow local "

@@ -137,6 +137,8 @@ class BenchFit:
         The discrepancy bound of the solution's χ²
         (:func:`~skisnow.identify._homotopy.restart_bound`): above it the fit is
         not at the noise.
+    chi2_dof
+        The residual degrees of freedom behind that bound (the mean χ² at the noise).
     """
 
     solution: Any
@@ -144,6 +146,7 @@ class BenchFit:
     records: tuple[tuple[float, float, float, float], ...]
     residuals: NDArray[np.float64]
     chi2_bound: float
+    chi2_dof: float = float("nan")
 
 
 def _lowest(records: Sequence[tuple]) -> int:
@@ -309,4 +312,5 @@ def fit_bench(
     )
     return BenchFit(
         solution=sol, regularisation=lam, records=table, residuals=sol.fun, chi2_bound=bound,
+        chi2_dof=dof,
     )  # fmt: skip

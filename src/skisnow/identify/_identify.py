@@ -47,6 +47,7 @@ from skisnow.identify._bands import (
 )
 from skisnow.identify._cases import _bench_cases, load_cases
 from skisnow.identify._diagnosis import correlated_excess, diagnose
+from skisnow.identify._edges import EDGE_SCALE, edge_refit
 from skisnow.identify._fit import fit_bench
 from skisnow.identify._mesh_error import mesh_error
 from skisnow.identify._model import _Problem
@@ -105,6 +106,8 @@ def identify_ski(
     criterion: str = "gcv",
     smoothing_bands: bool = True,
     discrepancy_bands: bool = False,
+    stiffness_penalty: str = "quadratic",
+    edge_scale: float = EDGE_SCALE,
     progress: Callable[[str], None] | None = None,
     source: str = "",
 ) -> IdentificationResult:
@@ -175,6 +178,12 @@ def identify_ski(
         Add the estimated smoothing bias to the bands (:func:`~skisnow.identify._bands.
         smoothing_bias`: the step to the fit at min(λ / 100, min(lambdas)), a rule calibrated
         on seeded skis 1-4 and validated on others).
+    stiffness_penalty, edge_scale
+        The smoothness penalty of log EI: ``'quadratic'`` (λ |D₂ θ|², the default) or
+        ``'huber'`` (edge-preserving: the Huber loss of scale ``edge_scale`` on the second
+        differences of the log-EI coefficients, by reweighting from the quadratic fit at its
+        λ; ``'huber-gcv'`` chooses λ again by GCV at each reweighting;
+        :mod:`skisnow.identify._edges`).
     progress
         Called with a short message after each stage.
     source
@@ -209,6 +218,13 @@ def identify_ski(
     xmax = max(float(c[2].max()) for c in raw)
     x_tail = float(md.get("x_tail_mm", xmin * 1e3)) * 1e-3 if x_tail is None else float(x_tail)
     x_tip = float(md.get("x_tip_mm", xmax * 1e3)) * 1e-3 if x_tip is None else float(x_tip)
+    if stiffness_penalty not in ("quadratic", "huber", "huber-gcv"):
+        raise InputError(
+            "stiffness_penalty must be 'quadratic', 'huber' or 'huber-gcv', got "
+            f"{stiffness_penalty!r}"
+        )
+    if not (np.isfinite(edge_scale) and edge_scale > 0):
+        raise InputError(f"edge_scale must be > 0, got {edge_scale}")
     if criterion not in ("gcv", "evidence", "case-cv"):
         raise InputError(f"criterion must be 'gcv', 'evidence' or 'case-cv', got {criterion!r}")
     if n_camber is None:
@@ -241,6 +257,8 @@ def identify_ski(
         raise InputError(
             f"bench of ski {label!r}: every profile needs at least 5 stations to estimate the noise"
         ) from None
+    # the standard error of the estimated noise's log (its 95 % interval is ±1.96 of them)
+    noise_log_se = float(np.log(estimate.interval[1] / estimate.pooled)) / 1.96
     if noise is None:
         sigma_cases = np.maximum(np.nan_to_num(estimate.sigma, nan=estimate.pooled), 1e-7)
     else:
@@ -267,6 +285,14 @@ def identify_ski(
                                  **{**options, "regularisation": lam})  # fmt: skip
 
             fitted, outliers = robust_refit(problem, fitted, refit, say)
+        if stiffness_penalty != "quadratic":
+            gcv_again = stiffness_penalty == "huber-gcv"
+
+            def refit_edges(p: Any, lam: float) -> Any:
+                opts = {**options, "regularisation": None if gcv_again else lam}
+                return fit_bench(problem, cases, nodes, initial=None, start_parameters=p, **opts)
+
+            fitted = edge_refit(problem, fitted, refit_edges, say, edge_scale)
     except (np.linalg.LinAlgError, FloatingPointError) as exc:
         raise ConvergenceError(
             f"bench of ski {label!r}: the fit broke down ({exc}); the profiles do not fit one "
@@ -307,6 +333,7 @@ def identify_ski(
     diag = diagnose(
         chi2=chi2, bound=fitted.chi2_bound, misfit=float(sol.misfit_rms), lm_status=sol.status,
         noise=problem.sigma, noise_given=noise, noise_data=float(estimate.pooled),
+        dof=fitted.chi2_dof, noise_se=0.0 if noise is not None else noise_log_se,
         case_misfits=case_misfit, mesh_rms=merr.rms, element_length=merr.element_length,
         ei_x=prof.ex, ei_determined=prof.ei_determined, bent=bent,
         cases=[(c.mass, c.position) for c in cases], model_error2=delta2, n_bins=r.size,
@@ -369,6 +396,7 @@ def identify_ski(
             details=(
                 ("lambda", lam),
                 ("criterion", "given" if regularisation is not None else criterion),
+                ("stiffness_penalty", stiffness_penalty),
                 ("n_stiffness", n_stiffness),
                 ("n_camber", problem.n_z),
                 ("noise_mm", problem.sigma * 1e3),

@@ -221,6 +221,10 @@ class _Problem:
         self.phi_z_cases = [_design(self.t_z, c.x) for c in cases]
         self.q_z_cases = [phi @ self.q_z for phi in self.phi_z_cases]  # ∂z0(x̄)/∂φ per case
         self.d2_e = _second_differences(n_stiffness)
+        #: square roots of the weights of the log-EI smoothness rows (1: the quadratic penalty;
+        #: below 1 where an edge-preserving penalty lets a stiffness step through,
+        #: :mod:`skisnow.identify._edges`)
+        self.stiffness_weights = np.ones(n_stiffness - 2)
         self.d2_z = _second_differences(n_camber) / _Z_REF
         self.n_params = n_stiffness + n_camber - 2
         self.warm: list[NDArray[np.float64] | None] = [None] * len(cases)
@@ -414,7 +418,8 @@ class _Problem:
         Read as a Gaussian prior (Wahba 1978), PᵀP is its precision (σ-normalised)."""
         zeros_z = np.zeros((self.n_e, self.n_z - 2))
         rows_e = np.sqrt(lam) * np.concatenate(
-            [self.d2_e, np.zeros((self.n_e - 2, self.n_z - 2))], axis=1
+            [self.stiffness_weights[:, None] * self.d2_e, np.zeros((self.n_e - 2, self.n_z - 2))],
+            axis=1,
         )
         d1 = np.diff(np.eye(self.n_e), axis=0)
         rows_e = np.concatenate(
