@@ -1,7 +1,8 @@
-"""The exit rule of the identification (issue 25, sixth pass): a fit at the noise plus a stated
-systematic error of at most 0.46 σ is converged; a noise misestimate, a larger error or a fit
-stopped far off is not. The systematic part is estimated from the residuals' correlation between
-neighbouring bins (:func:`skisnow.identify._diagnosis.correlated_excess`), not from their size."""
+"""The exit rule of the identification (issue 25, sixth pass): a fit that stopped on its
+decrement at the noise plus a stated error of at most 0.46 σ is converged; a noise given
+wrongly, a larger error or a fit stopped by its evaluation limit is not. The part of the error
+correlated along the profiles (:func:`skisnow.identify._diagnosis.correlated_excess`) names a
+white excess as a noise misestimate."""
 
 from __future__ import annotations
 
@@ -61,7 +62,7 @@ def _diagnosis(r: np.ndarray, *, lm_status: int = 1, noise_given: float | None =
         case_misfits=[(10.0 * (k + 1), -0.12, 1.0) for k in range(_CASES)], mesh_rms=1e-7,
         element_length=0.01, ei_x=np.linspace(-0.9, 0.9, 91), ei_determined=np.ones(91, bool),
         bent=(-0.8, 0.8), cases=[(10.0 * (k + 1), -0.12) for k in range(_CASES)],
-        model_error2=correlated_excess(r, [_BINS] * _CASES), n_bins=n,
+        correlated2=correlated_excess(r, [_BINS] * _CASES), n_bins=n, dof=dof,
     )  # fmt: skip
 
 
@@ -70,15 +71,18 @@ def test_a_fit_at_the_noise_plus_a_stated_model_error_is_converged() -> None:
     # the old rule, exit 0 now with the error stated (~1.5 µm of a 5 µm noise)
     d = _diagnosis(_residuals(0.3, seed=1))
     assert d.converged and d.causes == ("model-error",)
-    stated = float(re.search(r"systematic error of ([0-9.]+) µm rms", d.warnings[0]).group(1))
-    assert stated == pytest.approx(1.5, abs=0.15)
+    stated = float(re.search(r"plus an error of ([0-9.]+) µm rms", d.warnings[0]).group(1))
+    # the excess over the noise is the smooth error's 0.3 σ (1.5 µm of 5 µm), all correlated
+    assert stated == pytest.approx(1.5, abs=0.2)
+    correlated = float(re.search(r"of which ([0-9.]+) µm is correlated", d.warnings[0]).group(1))
+    assert correlated == pytest.approx(1.5, abs=0.2)
 
 
 @pytest.mark.parametrize(
     ("delta", "scale", "lm_status", "noise_given", "cause"),
     [
         (0.6, 1.0, 1, None, "model"),  # a systematic error above the cap (misfit ~1.17 σ)
-        (0.3, 1.25, 1, None, "model"),  # white excess: the noise 1.25 times underestimated
+        (0.3, 1.25, 1, None, "noise"),  # white excess: the noise 1.25 times underestimated
         (0.3, 10.0, 1, 0.5e-6, "noise"),  # σ given 10 times too small: δ = 3 σ_given
         (0.9, 1.0, 0, None, "evaluations"),  # stopped by the evaluation limit far off
     ],

@@ -328,15 +328,17 @@ def identify_ski(
         case_misfit.append((c.mass, c.position, float(np.sqrt(np.mean(rk**2)))))
     masses = sorted({c.mass for c in cases})
     positions = sorted({round(c.position * 1e3, 6) for c in cases})
-    # the systematic part of the residuals (σ² units): what a σ_eff² = σ² + δ² allows
-    delta2 = correlated_excess(r, [c.x.size for c in cases])
+    # the excess over the noise (σ² units: what σ_eff² = σ² + δ² allows, up to the cap) and
+    # its part correlated between neighbouring bins
+    corr2 = correlated_excess(r, [c.x.size for c in cases])
+    delta2 = max(chi2 - fitted.chi2_dof, 0.0) / r.size if np.isfinite(fitted.chi2_dof) else 0.0
     diag = diagnose(
         chi2=chi2, bound=fitted.chi2_bound, misfit=float(sol.misfit_rms), lm_status=sol.status,
         noise=problem.sigma, noise_given=noise, noise_data=float(estimate.pooled),
         dof=fitted.chi2_dof, noise_se=0.0 if noise is not None else noise_log_se,
         case_misfits=case_misfit, mesh_rms=merr.rms, element_length=merr.element_length,
         ei_x=prof.ex, ei_determined=prof.ei_determined, bent=bent,
-        cases=[(c.mass, c.position) for c in cases], model_error2=delta2, n_bins=r.size,
+        cases=[(c.mass, c.position) for c in cases], correlated2=corr2, n_bins=r.size,
     )  # fmt: skip
     for w in outliers:
         say(f"outlier: {w.mass:g} kg at {w.load_position * 1e3:g} mm, x = {w.x * 1e3:.0f} mm")

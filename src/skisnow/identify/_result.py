@@ -69,10 +69,10 @@ class IdentificationResult:
         ``'evaluations'``, ``'model'``, ``'model-error'``, ``'information'``;
         :mod:`skisnow.identify._diagnosis`).
     model_error
-        ``(rms [m], fraction of the noise)``: the systematic error the residuals show (their
-        correlation between neighbouring bins, :func:`~skisnow.identify._diagnosis.
-        correlated_excess`); a fit above the noise-only bound is converged when its χ² is
-        within the bound of σ² + δ² and δ ≤ 0.46 σ (issue 25's misfit ≤ 1.1 σ).
+        ``(rms [m], fraction of the noise)``: the fit's excess over the noise, δ² = (χ² - dof)
+        / n in σ² units; a fit that stopped on its decrement above the noise's bound is
+        converged when δ ≤ 0.46 σ (issue 25's misfit ≤ 1.1 σ), with δ stated
+        (:mod:`skisnow.identify._diagnosis`).
     warnings
         The same in words, with what would help.
     """
