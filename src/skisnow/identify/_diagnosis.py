@@ -2,7 +2,9 @@
 
 A fit is *converged* when it explains the bench down to its noise — its χ² within the
 discrepancy bound of its own residual degrees of freedom (:func:`~skisnow.identify._homotopy.
-restart_bound`) — and its forward model's discretisation error is below a fifth of the noise.
+restart_bound`, widened by the uncertainty of an estimated noise, :func:`noise_bound`), or
+within the allowance for a stated model error below — and its forward model's discretisation
+error is below a fifth of the noise.
 Otherwise the warning names the cause, checked in this order (the first that applies is the
 main cause; every one that applies is listed):
 
