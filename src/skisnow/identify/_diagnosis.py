@@ -69,19 +69,20 @@ def noise_bound(dof: float, noise_se: float, sigmas: float = 2.0) -> float:
 
 
 def correlated_excess(residuals: np.ndarray, sizes: Sequence[int]) -> float:
-    """The systematic part δ² of σ-normalised residuals (in units of σ²): from their mean
-    products between bins one and two apart in the same load case (the lag-one and lag-two
-    autocovariances c₁, c₂, pooled over the cases), extrapolated to lag zero,
-    δ² = (4 c₁ - c₂) / 3, clipped at 0.
+    """The part δ² of σ-normalised residuals that is correlated along the profiles (in units of
+    σ²): from their mean products between bins one and two apart in the same load case (the
+    lag-one and lag-two autocovariances c₁, c₂, pooled over the cases), the larger of the
+    smooth error's (4 c₁ - c₂) / 3 and a two-bin period's c₂, clipped at 0.
 
-    Residuals r = e + ε of a smooth error e (correlated over many bins: a model or bench error
-    along the ski) and independent noise ε of unit variance have E[r_i r_(i+k)] = c_e(k), the
-    noise adding nothing at k ≥ 1, while E[r_i²] = c_e(0) + 1 (the sample autocovariance, Box &
+    Residuals r = e + ε of an error e correlated over several bins (a model or bench error along
+    the ski) and independent noise ε of unit variance have E[r_i r_(i+k)] = c_e(k), the noise
+    adding nothing at k ≥ 1, while E[r_i²] = c_e(0) + 1 (the sample autocovariance, Box &
     Jenkins 1976, §2.1; the noise is the nugget of the residuals' variogram, Cressie 1993,
     §2.3.1). A smooth error's autocovariance is c_e(0) (1 - a k²) near zero lag, which the
-    extrapolation removes (a sine of 12 bins' wavelength: c₁ alone 0.87 c_e(0), the
-    extrapolation 0.99). Its standard error under pure noise is about 1.4 (number of
-    pairs)^-1/2."""
+    extrapolation (4 c₁ - c₂) / 3 removes (a sine of 12 bins' wavelength: c₁ alone 0.87
+    c_e(0), the extrapolation 0.99). An error that repeats every two bins (measured on the full
+    plans of issue 25: the fit's 10 mm elements against 5 mm bins, c₁ < 0 < c₂) has
+    c₂ = c_e(0). Standard error under pure noise: about 1.4 (number of pairs)^-1/2."""
     r = np.asarray(residuals, dtype=float)
     cuts = np.cumsum(sizes)[:-1]
     c1 = c2 = 0.0
@@ -91,7 +92,10 @@ def correlated_excess(residuals: np.ndarray, sizes: Sequence[int]) -> float:
             c1 += float(part[:-1] @ part[1:])
             c2 += float(part[:-2] @ part[2:])
             n1, n2 = n1 + part.size - 1, n2 + part.size - 2
-    return max(0.0, (4.0 * c1 / n1 - c2 / n2) / 3.0) if n2 else 0.0
+    if not n2:
+        return 0.0
+    c1, c2 = c1 / n1, c2 / n2
+    return max(0.0, (4.0 * c1 - c2) / 3.0, c2)
 
 
 class Diagnosis:
