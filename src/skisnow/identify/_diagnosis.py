@@ -19,9 +19,9 @@ main cause; every one that applies is listed):
   ``n_camber``); ``noise`` instead when the excess is mostly uncorrelated between neighbouring
   bins (:func:`correlated_excess`: a misestimated noise, not a smooth model error);
 * ``model-error`` (a note, not a failure): the fit stopped on its Gauss–Newton decrement (no
-  step lowers the misfit by a meaningful amount) above the noise's bound, but within the bound
-  of σ_eff² = σ² + δ² with δ ≤ :data:`MODEL_ERROR_MAX` σ; the summary states δ (the excess
-  over the noise, δ² = (χ² − dof) / n) and how much of it is correlated along the profiles;
+  step lowers the misfit by a meaningful amount) above the noise's bound, with an excess over
+  the noise δ² = (χ² − dof) / n of at most :data:`MODEL_ERROR_MAX`² σ² (σ_eff² = σ² + δ²);
+  the summary states δ and how much of it is correlated along the profiles;
 * ``information`` (a warning, not a failure): the bench leaves parts of the ski undetermined
   — where no load case bends it (beyond the outermost contacts) or no station measures it;
   the warning names the span and the load cases that would add the information.
@@ -149,12 +149,7 @@ def diagnose(
     if noise_se > 0 and allowance:
         bound = max(bound, noise_bound(dof, noise_se))
     delta = float(np.sqrt(max(chi2 - dof, 0.0) / n_bins)) if allowance else 0.0
-    within_model = (
-        allowance
-        and chi2 > bound
-        and lm_status == 1
-        and chi2 <= bound + n_bins * MODEL_ERROR_MAX**2
-    )
+    within_model = allowance and chi2 > bound and lm_status == 1 and delta <= MODEL_ERROR_MAX
     white = allowance and correlated2 < 0.5 * delta**2  # the excess mostly uncorrelated
     at_noise = chi2 <= bound or within_model
     mesh_ok = mesh_rms <= noise / 5.0
