@@ -116,7 +116,7 @@ def test_the_bound_with_an_estimated_noise_holds_its_level() -> None:
 
 
 @pytest.mark.slow
-def test_the_true_ski_on_a_fine_full_plan_exits_0_and_what_must_still_exit_3() -> None:
+def test_the_true_ski_on_a_fine_full_plan_exits_0_and_a_far_capped_fit_exits_3() -> None:
     # Issue 25's ski, 21 load cases (10-130 kg in 20 kg steps at -40, -120, -200 mm), stations
     # every 2 mm, 5 µm noise, heights by the independent reference bench at 0.5 mm (finite
     # differences, contact at every node; not the fit's forward model). Measured: started at the
@@ -135,9 +135,8 @@ def test_the_true_ski_on_a_fine_full_plan_exits_0_and_what_must_still_exit_3() -
     assert res.converged and "model-error" in res.causes  # ... within the stated model error
     assert 0.0 < res.model_error[1] <= MODEL_ERROR_MAX
     assert any("µm rms" in w and "allowance" in w for w in res.warnings)
-    # a noise given 10 times too small: exit 3, the noise named
-    low = identify_ski(bench, initial=true, noise=0.5e-6, max_nfev=10)
-    assert not low.converged and "noise" in low.causes and "model-error" not in low.causes
+    # (a noise given 10 times too small, exit 3 with the noise named: the diagnosis above, and on
+    # an issue-sized bench through the CLI, tests/cli/test_identify_robustness.py)
     # a far start (EI 300 N m² everywhere) stopped after three evaluations: exit 3
     flat = dataclasses.replace(true, stiffness_values=np.full(len(true.stiffness_values), 300.0))
     far = identify_ski(bench, initial=flat, max_nfev=3)
