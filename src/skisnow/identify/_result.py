@@ -42,7 +42,9 @@ class IdentificationResult:
         Evaluations of the final fit, and how it ended.
     converged
         Whether the fit explains the bench down to its noise (χ² within its discrepancy
-        bound) with a forward model accurate to a fifth of the noise (``diagnosis``).
+        bound, widened by the uncertainty of an estimated noise), or to its noise plus a stated
+        model error of at most 0.46 σ (``model_error``), with a forward model accurate to a
+        fifth of the noise (:mod:`skisnow.identify._diagnosis`).
     seconds
         Wall time of the identification.
     misfit
