@@ -224,6 +224,10 @@ def test_bad_input(bench) -> None:
         ident.identify_ski(bench, x_tip=0.5)
     with pytest.raises(InputError, match="criterion must be 'gcv', 'evidence' or 'case-cv'"):
         ident.identify_ski(bench, criterion="aic")
+    with pytest.raises(InputError, match="stiffness_penalty must be 'quadratic', 'huber'"):
+        ident.identify_ski(bench, stiffness_penalty="tv")
+    with pytest.raises(InputError, match="edge_scale must be > 0"):
+        ident.identify_ski(bench, stiffness_penalty="huber", edge_scale=0.0)
 
 
 def test_cli_identify(bench, tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:

@@ -180,10 +180,11 @@ def identify_ski(
         on seeded skis 1-4 and validated on others).
     stiffness_penalty, edge_scale
         The smoothness penalty of log EI: ``'quadratic'`` (λ |D₂ θ|², the default) or
-        ``'huber'`` (edge-preserving: the Huber loss of scale ``edge_scale`` on the second
-        differences of the log-EI coefficients, by reweighting from the quadratic fit at its
-        λ; ``'huber-gcv'`` chooses λ again by GCV at each reweighting;
-        :mod:`skisnow.identify._edges`).
+        ``'huber'`` (edge-preserving: the Huber loss of scale ``edge_scale``, in the prior's
+        standard deviations, on the smoothness rows √λ D₂ θ of the log-EI coefficients, by
+        reweighting from the quadratic fit at its λ; ``'huber-gcv'`` chooses λ again by GCV at
+        each reweighting; :mod:`skisnow.identify._edges`). An option: on the calibration skis
+        it did not lower the EI error (docs/validation/identification-uncertainty.md).
     progress
         Called with a short message after each stage.
     source
@@ -258,7 +259,8 @@ def identify_ski(
             f"bench of ski {label!r}: every profile needs at least 5 stations to estimate the noise"
         ) from None
     # the standard error of the estimated noise's log (its 95 % interval is ±1.96 of them)
-    noise_log_se = float(np.log(estimate.interval[1] / estimate.pooled)) / 1.96
+    lo, hi = estimate.interval
+    noise_log_se = float(np.log(hi / lo)) / (2 * 1.96) if lo > 0 else 0.0
     if noise is None:
         sigma_cases = np.maximum(np.nan_to_num(estimate.sigma, nan=estimate.pooled), 1e-7)
     else:
