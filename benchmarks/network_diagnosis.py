@@ -2,7 +2,8 @@
 
     nice -n 10 uv run python benchmarks/network_diagnosis.py --ski classic --label base \
         [--lm-steps 150] [--lm-points 3000] [--widths 6,16,16,16,12,12] [--contact-weight 4] \
-        [--no-reference] [--validation-fraction 0.15] [--bench paper|dense|m1p40|m5p13]
+        [--no-reference] [--mass-scaled] [--validation-fraction 0.15] \
+        [--bench paper|dense|m1p40|m5p13]
 
 Trains one network (seeded) with the given recipe on a virtual bench of ``--ski`` and prints
 one JSON line: the 25 off-grid load cases of ``bench_network.py`` (network and interpolation of
@@ -66,6 +67,11 @@ def main() -> None:
     ap.add_argument("--contact-weight", type=float, default=4.0)
     ap.add_argument("--validation-fraction", type=float, default=0.15)
     ap.add_argument("--no-reference", action="store_true")
+    ap.add_argument(
+        "--mass-scaled",
+        action="store_true",
+        help="learn (h - h_0(x)) / m (train_network's mass_scaled_output; fifth pass)",
+    )
     ap.add_argument("--interp-only", action="store_true")
     ap.add_argument(
         "--shipped-fit",
@@ -135,6 +141,7 @@ def main() -> None:
             contact_weight=args.contact_weight,
             validation_fraction=args.validation_fraction,
             reference_profile=not args.no_reference,
+            mass_scaled_output=args.mass_scaled,
             progress=progress,
             report_every=50,
         )

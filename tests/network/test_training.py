@@ -188,3 +188,29 @@ def test_adam_alone_reports_its_budget_and_raises_on_request(small_bench):
         train_network(small_bench, seed=5, raise_on_failure=True, **kw)
     assert isinstance(info.value.result, CamberNetwork)
     assert info.value.status is SolverStatus.MAX_STEPS_REACHED
+
+
+def test_an_added_member_is_the_member_of_the_larger_ensemble(small_bench):
+    """``first_member=1`` trains exactly the second member of the seed's two-member ensemble
+    (same split, scaling, reference, initial weights and LM subsample: bit-identical weights),
+    so a member added later to a trained network is the one a larger training would have had."""
+    from skisnow.network import network_arrays, train_network
+
+    kw = {
+        "architecture": "2,3,3,3,2,2",
+        "adam_steps": 20,
+        "lm_steps": 3,
+        "lm_points": 200,
+        "report_every": 10,
+        "seed": 5,
+    }
+    pair = train_network(small_bench, ensemble=2, **kw)
+    added = train_network(small_bench, first_member=1, **kw)
+    assert added.scaling == pair.scaling
+    np.testing.assert_array_equal(added.reference.height, pair.reference.height)
+    a, b = network_arrays(pair), network_arrays(added)
+    for name in b:
+        if name.startswith("member0/"):
+            np.testing.assert_array_equal(b[name], a[name.replace("member0/", "member1/")])
+    with pytest.raises(InputError, match="first_member"):
+        train_network(small_bench, first_member=-1, **kw)

@@ -189,6 +189,8 @@ def _metadata_document(net: CamberNetwork) -> dict[str, Any]:
             "x_min": net.reference.x_min,
             "x_max": net.reference.x_max,
             "n": int(net.reference.height.size),
+            # h = h_0(x) + m · network (issue 30, fifth pass); absent in older files: False
+            **({"mass_scaled": True} if net.reference.mass_scaled else {}),
         },
         "metadata": dict(net.metadata),
     }
@@ -328,7 +330,10 @@ def network_from_files(
             raise FileFormatError(
                 f"{where}: reference profile array missing or not {n_ref} finite floats"
             )
-        reference = ReferenceProfile(x_min=x0, x_max=x1, height=h_ref)
+        mass_scaled = ref_doc.get("mass_scaled", False)
+        if not isinstance(mass_scaled, bool):
+            raise FileFormatError(f"{where}: reference 'mass_scaled' must be true or false")
+        reference = ReferenceProfile(x_min=x0, x_max=x1, height=h_ref, mass_scaled=mass_scaled)
     net = CamberNetwork(
         reference=reference,
         architecture=architecture,

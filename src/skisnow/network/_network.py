@@ -337,6 +337,8 @@ class CamberNetwork:
             out = np.asarray(out, dtype=float)[:, :k, :n]
         h = s.unscale_height(out)
         if self.reference is not None:
+            if self.reference.mass_scaled:  # the network learned (h - h_0(x)) / m
+                h = h * m[None, :, None]
             h = h + self.reference(x)
         if on_domain_error != "ignore":  # a derived quantity, checked where it is computed
             check_value(

@@ -84,7 +84,9 @@ def train_network(
     contact_height: float = 0.2e-3,
     contact_weight: float = 4.0,
     reference_profile: bool = True,
+    mass_scaled_output: bool = False,
     ensemble: int = 1,
+    first_member: int = 0,
     time_limit: float | None = None,
     progress: Callable[[TrainingProgress], None] | None = None,
     report_every: int = 50,
@@ -122,9 +124,19 @@ def train_network(
         Learn ``h - h_ref(x)`` with ``h_ref`` the mean training profile (an
         x-dependent output scaling, see :class:`ReferenceProfile`); ``False`` = the paper's
         plain network on ``h``.
+    mass_scaled_output
+        Learn the deflection per kilogram ``(h - h_0(x)) / m`` with ``h_0`` the unloaded
+        profile extrapolated from the two lightest bench masses
+        (:meth:`ReferenceProfile.unloaded`; issue 30, fifth pass); the residuals are weighted by
+        ``m`` so that the loss stays in heights. Needs ``reference_profile``.
     ensemble
         Number of members (different initial weights); the spread of their predictions is
         reported by :meth:`CamberNetwork.predict_with_spread`.
+    first_member
+        Train members ``first_member, ..., first_member + ensemble - 1`` of the seed's ensemble
+        (same split, scaling and reference; member k's initial weights and LM subsample are
+        those it has in a larger ensemble): adds members to a network trained earlier on the
+        same bench with the same seed (issue 30, fifth pass).
     time_limit
         Wall-clock budget [s] of each member's Levenberg–Marquardt phase (``None``: none). A
         phase cut by it ends like one cut by ``lm_steps``: status ``MAX_STEPS_REACHED``, its
@@ -190,12 +202,19 @@ def train_network(
     is_val = val_cond[cond_index]
     tr, va = ~is_val, is_val
 
-    reference = (
-        ReferenceProfile.mean_of_profiles(x[tr], h[tr], cond_index[tr])
-        if reference_profile
-        else None
-    )
+    if mass_scaled_output and not reference_profile:
+        raise InputError("mass_scaled_output needs reference_profile=True")
+    if mass_scaled_output:
+        reference = ReferenceProfile.unloaded(x[tr], m[tr], p[tr], h[tr])
+    elif reference_profile:
+        reference = ReferenceProfile.mean_of_profiles(x[tr], h[tr], cond_index[tr])
+    else:
+        reference = None
     target = h - reference(x) if reference is not None else h
+    # the output's multiplier (h = h_ref + mult · network) and the loss weights in heights
+    mult = m if mass_scaled_output else np.ones_like(m)
+    m_ref = float(np.mean(m[tr])) if mass_scaled_output else 1.0
+    target = target / mult
     scaling = Scaling.from_data(x[tr], m[tr], p[tr], target[tr])
     domain = Domain(
         mass_min=float(m.min()),
@@ -207,16 +226,18 @@ def train_network(
     )
     xs, ms, ps = scaling.scale_inputs(x, m, p)
     hs = scaling.scale_height(target)
-    w = _loss_weights(h, contact_height, contact_weight)
+    w = _loss_weights(h, contact_height, contact_weight) * (mult / m_ref) ** 2
 
     rng = np.random.default_rng(seed)
-    member_seeds = rng.integers(0, 2**31 - 1, size=ensemble)
+    if first_member < 0:
+        raise InputError(f"first_member must be >= 0, got {first_member}")
+    member_seeds = rng.integers(0, 2**31 - 1, size=first_member + ensemble)[first_member:]
     members = []
     histories = []
     with x64():
         data_all = tuple(jnp.asarray(a[tr]) for a in (xs, ms, ps, hs, w))
         ref_va = reference(x[va]) if reference is not None else np.zeros(int(va.sum()))
-        data_va = tuple(jnp.asarray(a) for a in (xs[va], ms[va], ps[va], h[va], ref_va))
+        data_va = tuple(jnp.asarray(a) for a in (xs[va], ms[va], ps[va], h[va], ref_va, mult[va]))
         # LM subsample: every k-th training point (a stratified, deterministic thinning) with
         # a seeded offset, so that every training condition and the whole ski are represented.
         n_tr = int(tr.sum())
@@ -230,6 +251,7 @@ def train_network(
             member, hist = _train_member(
                 arch,
                 scaling,
+                m_ref,
                 data_tr,
                 data_lm,
                 data_va,
@@ -292,9 +314,11 @@ def train_network(
             "contact_weight": contact_weight,
             "validation_fraction": validation_fraction,
             "reference_profile": reference_profile,
+            "mass_scaled_output": mass_scaled_output,
             "time_limit_s": time_limit,
             "architecture": list(arch.widths),
             "ensemble": ensemble,
+            "first_member": first_member,
         },
         "lm_steps_taken": [h_["lm_steps"] for h_ in histories],
         "stopped_by": [h_["stopped_by"] for h_ in histories],
@@ -321,6 +345,7 @@ def _worst(statuses: Sequence[SolverStatus]) -> SolverStatus:
 def _train_member(
     arch: Architecture,
     scaling: Scaling,
+    m_ref: float,
     data_tr: tuple[jax.Array, ...],
     data_lm: tuple[jax.Array, ...],
     data_va: tuple[jax.Array, ...],
@@ -343,7 +368,7 @@ def _train_member(
     """
     model = BlockNetwork(arch, key=key)
     theta0, unravel = ravel_pytree(model)
-    hscale = scaling.height_scale
+    hscale = scaling.height_scale * m_ref  # residual units -> metres of height
 
     def residual(theta: jax.Array, data: tuple[jax.Array, ...]) -> jax.Array:
         xs, ms, ps, hs, w = data
@@ -351,8 +376,8 @@ def _train_member(
 
     @jax.jit
     def val_errors(theta: jax.Array) -> tuple[jax.Array, jax.Array]:
-        xs, ms, ps, h, ref = data_va
-        pred = scaling.unscale_height(unravel(theta).points(xs, ms, ps)) + ref
+        xs, ms, ps, h, ref, mult = data_va
+        pred = scaling.unscale_height(unravel(theta).points(xs, ms, ps)) * mult + ref
         pred = jnp.maximum(pred, 0.0)
         e = jnp.abs(pred - h)
         return 1e6 * jnp.mean(e), 1e6 * jnp.max(e)
