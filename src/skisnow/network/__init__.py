@@ -48,6 +48,7 @@ _LAZY = {
         "skisnow.network._training",
     ),
     **dict.fromkeys(("bench_sha256", "split_conditions"), "skisnow.network._bench_split"),
+    "widen_network": "skisnow.network._widen",
 }
 
 __getattr__ = lazy_getattr(__name__, _LAZY)
@@ -75,5 +76,6 @@ __all__ = [
     "shipped_network",
     "split_conditions",
     "train_network",
+    "widen_network",
     "write_model_files",
 ]

@@ -87,6 +87,7 @@ def train_network(
     mass_scaled_output: bool = False,
     ensemble: int = 1,
     first_member: int = 0,
+    initial: CamberNetwork | None = None,
     time_limit: float | None = None,
     progress: Callable[[TrainingProgress], None] | None = None,
     report_every: int = 50,
@@ -137,6 +138,11 @@ def train_network(
         (same split, scaling and reference; member k's initial weights and LM subsample are
         those it has in a larger ensemble): adds members to a network trained earlier on the
         same bench with the same seed (issue 30, fifth pass).
+    initial
+        Start from these members instead of random weights (a network trained with the same
+        seed on the same bench, possibly widened by :func:`skisnow.network.widen_network`; its
+        architecture is used, its scaling and reference must be the ones this bench and seed
+        give, and ``ensemble`` its member count).
     time_limit
         Wall-clock budget [s] of each member's Levenberg–Marquardt phase (``None``: none). A
         phase cut by it ends like one cut by ``lm_steps``: status ``MAX_STEPS_REACHED``, its
@@ -173,7 +179,9 @@ def train_network(
     """
     t0 = time.perf_counter()
     table = _bench_table(bench)
-    if isinstance(architecture, Architecture):
+    if initial is not None:
+        arch = initial.architecture
+    elif isinstance(architecture, Architecture):
         arch = architecture
     elif architecture is None:
         arch = Architecture()
@@ -224,6 +232,16 @@ def train_network(
         x_min=float(x.min()),
         x_max=float(x.max()),
     )
+    if initial is not None and not (
+        initial.scaling == scaling
+        and len(initial.members) == ensemble
+        and (initial.reference is None) == (reference is None)
+        and (reference is None or np.array_equal(initial.reference.height, reference.height))
+    ):
+        raise InputError(
+            "initial network: its scaling, reference profile or member count is not the one "
+            "this bench, seed and ensemble give (trained on another bench or split?)"
+        )
     xs, ms, ps = scaling.scale_inputs(x, m, p)
     hs = scaling.scale_height(target)
     w = _loss_weights(h, contact_height, contact_weight) * (mult / m_ref) ** 2
@@ -256,6 +274,7 @@ def train_network(
                 data_lm,
                 data_va,
                 key=jax.random.PRNGKey(int(mseed)),
+                initial=None if initial is None else initial.members[k],
                 adam_steps=adam_steps,
                 adam_learning_rate=adam_learning_rate,
                 lm_steps=lm_steps,
@@ -319,6 +338,7 @@ def train_network(
             "architecture": list(arch.widths),
             "ensemble": ensemble,
             "first_member": first_member,
+            "initial": initial is not None,
         },
         "lm_steps_taken": [h_["lm_steps"] for h_ in histories],
         "stopped_by": [h_["stopped_by"] for h_ in histories],
@@ -351,6 +371,7 @@ def _train_member(
     data_va: tuple[jax.Array, ...],
     *,
     key: jax.Array,
+    initial: BlockNetwork | None,
     adam_steps: int,
     adam_learning_rate: float,
     lm_steps: int,
@@ -366,7 +387,7 @@ def _train_member(
     Returns the member (the parameters with the lowest held-out error in the LM phase) and a
     history ``{"lm_steps": steps taken, "status": SolverStatus, "stopped_by": reason}``.
     """
-    model = BlockNetwork(arch, key=key)
+    model = BlockNetwork(arch, key=key) if initial is None else initial
     theta0, unravel = ravel_pytree(model)
     hscale = scaling.height_scale * m_ref  # residual units -> metres of height
 
