@@ -27,21 +27,28 @@ def _grow(
     rows: int,
     col_blocks: list[tuple[int, int]],
     rng: np.random.Generator,
-    init_scale: float,
+    init_scale: float | None,
 ) -> tuple[np.ndarray, np.ndarray]:
     """A layer (weight ``(out, in)``, bias) grown to ``rows`` outputs; its inputs come in blocks
     ``(old width, new width)``: old columns copied into the first columns of each block, the new
     columns of each block zero (the new neurons feeding this layer do not change it); new rows
-    (new neurons) random ``N(0, init_scale²)``, their biases zero."""
+    (new neurons) random: uniform in ±1/√fan-in (Equinox's initialisation of a linear layer)
+    when ``init_scale`` is None, else ``N(0, init_scale²)``; their biases likewise."""
     n_in = sum(new for _, new in col_blocks)
+    n_new = rows - weight.shape[0]
     w = np.zeros((rows, n_in))
-    w[weight.shape[0] :, :] = init_scale * rng.standard_normal((rows - weight.shape[0], n_in))
+    b = np.zeros(rows)
+    if init_scale is None:
+        lim = 1.0 / np.sqrt(n_in)
+        w[weight.shape[0] :, :] = rng.uniform(-lim, lim, (n_new, n_in))
+        b[weight.shape[0] :] = rng.uniform(-lim, lim, n_new)
+    else:
+        w[weight.shape[0] :, :] = init_scale * rng.standard_normal((n_new, n_in))
     src = dst = 0
     for old, new in col_blocks:
         w[: weight.shape[0], dst : dst + old] = weight[:, src : src + old]
         w[: weight.shape[0], dst + old : dst + new] = 0.0
         src, dst = src + old, dst + new
-    b = np.zeros(rows)
     b[: bias.shape[0]] = bias
     return w, b
 
@@ -51,14 +58,15 @@ def widen_network(
     architecture: Architecture | str,
     *,
     seed: int = 0,
-    init_scale: float = 0.1,
+    init_scale: float | None = None,
 ) -> CamberNetwork:
     """The trained ``net`` at the larger widths ``architecture``, predicting exactly the same.
 
-    Every layer keeps its trained weights; each new neuron has incoming weights drawn from
-    ``N(0, init_scale²)`` (seeded by ``seed``; the network's inputs are scaled to [-1, 1]) and
-    zero outgoing weights (Chen et al. 2016, Net2Net, zero-output growth). Scaling, reference
-    profile, domain and metadata are kept (the metadata gains ``widened_from``: the old widths).
+    Every layer keeps its trained weights; each new neuron has random incoming weights and bias
+    (seeded by ``seed``; uniform in ±1/√fan-in as a fresh layer, or ``N(0, init_scale²)``
+    weights and zero bias) and zero outgoing weights (Chen et al. 2016, Net2Net, zero-output
+    growth). Scaling, reference profile, domain and metadata are kept (the metadata gains
+    ``widened_from``: the old widths).
 
     Raises
     ------
