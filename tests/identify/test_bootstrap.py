@@ -84,3 +84,80 @@ def test_too_few_replicates_is_an_input_error(fitted) -> None:
     bench, res = fitted
     with pytest.raises(InputError, match="replicates"):
         bootstrap_bands(res, bench, replicates=1)
+
+
+def test_the_scales_agree_on_gaussian_replicates() -> None:
+    # 4000 replicates of N(0, sd) at 50 stations: every scale estimates sd (a consistency check
+    # of the 0.6745 of the MAD and of the trimming, which keeps every Gaussian replicate)
+    from skisnow.identify import replicate_scale
+
+    sd = np.linspace(2e-6, 20e-6, 50)
+    dev = np.random.default_rng(3).normal(0.0, 1.0, (4000, 50)) * sd
+    for scale in ("rms", "mad", "trimmed"):
+        got, kept = replicate_scale(dev, scale=scale)
+        np.testing.assert_allclose(got, sd, rtol=0.05, err_msg=scale)
+    assert kept.all()
+
+
+def test_a_far_off_replicate_does_not_blow_the_band_up(monkeypatch, fitted) -> None:
+    # issue 25, fourth pass: on ski 3 a few replicates ending far from the others took the z0
+    # half-width from 11 to 375 µm. Seven replicates ~50 µm off, one 3 mm off: what the default
+    # scale adds to the band stays within 1.5x of what the seven alone add; the plain rms's not
+    from skisnow.identify._bootstrap import DEFAULT_SCALE
+
+    bench, res = fitted
+    rng = np.random.default_rng(0)
+    shapes = [(lambda x, a=a, k=k: a * np.sin(2 * np.pi * k * x)) for a, k in
+              zip(rng.normal(0, 5e-5, 7), (1, 1.5, 2, 2.5, 3, 3.5, 4), strict=True)]  # fmt: skip
+    far = lambda x: 3e-3 * np.cos(np.pi * x / 0.4)  # noqa: E731
+    det = np.asarray(res.ski.camber_determined, dtype=bool)
+    _replicates(monkeypatch, res, [*shapes, far])
+    wide = bootstrap_bands(res, bench, replicates=8, scale="rms")
+    _replicates(monkeypatch, res, [*shapes, far])
+    robust = bootstrap_bands(res, bench, replicates=8)
+    _replicates(monkeypatch, res, shapes)
+    seven = bootstrap_bands(res, bench, replicates=7, scale=DEFAULT_SCALE)
+    s0 = np.asarray(res.ski.camber_sd)[det]
+
+    def added(r):  # the bootstrap's share of the band, median over the determined stations
+        return np.median(np.sqrt(np.asarray(r.ski.camber_sd)[det] ** 2 - s0**2))
+
+    assert added(robust) < 1.5 * added(seven)
+    assert added(wide) > 10 * added(seven)
+    assert robust.ski.provenance.detail("bootstrap_scale") == DEFAULT_SCALE
+
+
+def test_the_answers_inherit_exactly_the_added_variance(monkeypatch, fitted) -> None:
+    # the replicates become extra modes of the posterior (skisnow.ski.sample_skis draws from the
+    # modes): the variance they add at each station is the bootstrap's, no more, no less
+    from skisnow.identify import replicate_scale, run_replicates
+
+    bench, res = fitted
+    rng = np.random.default_rng(1)
+    shapes = [(lambda x, a=a, k=k: a * np.sin(2 * np.pi * k * x)) for a, k in
+              zip(rng.normal(0, 8e-6, 6), (1, 2, 3, 4, 5, 6), strict=True)]  # fmt: skip
+    _replicates(monkeypatch, res, shapes)
+    reps = run_replicates(res, bench, replicates=6)
+    _replicates(monkeypatch, res, shapes)
+    out = bootstrap_bands(res, bench, replicates=6)
+    det = np.asarray(res.ski.camber_determined, dtype=bool)
+    m0, m1 = np.asarray(res.ski.camber_modes), np.asarray(out.ski.camber_modes)
+    added = np.sum(m1**2, axis=0) - np.sum(m0**2, axis=0)
+    boot, _ = replicate_scale(reps.camber)
+    np.testing.assert_allclose(added[det], boot**2, rtol=1e-9, atol=1e-20)
+    np.testing.assert_allclose(added[~det], 0.0, atol=1e-24)
+    # EI's modes unchanged in variance (the bootstrap is not applied to EI by default)
+    e0, e1 = np.asarray(res.ski.stiffness_modes), np.asarray(out.ski.stiffness_modes)
+    np.testing.assert_allclose(np.sum(e1**2, axis=0), np.sum(e0**2, axis=0), rtol=1e-12)
+
+
+def test_replicates_in_processes_are_the_replicates_in_process(fitted) -> None:
+    # the same seeds give the same replicates whether they run here or in two worker processes
+    from skisnow.identify import run_replicates
+
+    bench, res = fitted
+    opts = dict(n_stiffness=20, max_nfev=10, replicates=2, warm=True)
+    here = run_replicates(res, bench, jobs=1, **opts)
+    there = run_replicates(res, bench, jobs=2, **opts)
+    np.testing.assert_array_equal(here.camber, there.camber)
+    np.testing.assert_array_equal(here.misfit, there.misfit)

@@ -68,6 +68,14 @@ def identify(
             "one identification; 0: the Laplace bands only, 8 calibrated).",
         ),
     ] = 0,
+    bootstrap_workers: Annotated[
+        int | None,
+        typer.Option(
+            "--bootstrap-workers",
+            help="Processes the bootstrap's replicates run in (0: in this process; unset: one "
+            "per core).",
+        ),
+    ] = None,
     figure: Annotated[
         Path | None,
         typer.Option("--figure", help="Save the passport figure (png/svg/pdf by suffix)."),
@@ -75,6 +83,7 @@ def identify(
     json_out: JsonOption = False,
 ) -> None:
     """Identify EI(x) and z0(x) from a whole bench sequence (beam on the stone, least squares)."""
+    from skisnow._parallel import default_workers
     from skisnow.bench import read_bench
     from skisnow.identify import bootstrap_bands, identify_ski
     from skisnow.ski import write_ski
@@ -112,8 +121,9 @@ def identify(
     )
     res = identify_ski(bench, progress=say, source=str(bench_file), **options)
     if bootstrap:
-        say(f"bootstrap: {bootstrap} replicate benches, each identified again")
-        res = bootstrap_bands(res, bench, replicates=bootstrap,
+        jobs = default_workers() if bootstrap_workers is None else max(1, bootstrap_workers)
+        say(f"bootstrap: {bootstrap} replicate benches, each identified again ({jobs} processes)")
+        res = bootstrap_bands(res, bench, replicates=bootstrap, jobs=jobs,
                               **{k: v for k, v in options.items() if k != "name"})  # fmt: skip
     write_ski(res.ski, out)
     if figure is not None:
@@ -130,7 +140,6 @@ def identify(
                      "misfit above the noise may come from these data, not from the causes "
                      "named below.")  # fmt: skip
     n_boot = res.bootstrap[0] if res.bootstrap else 0
-    boot_note = f"; z0 with a parametric bootstrap of {n_boot} replicates" if n_boot else ""
     doc = {
         "ski": res.ski.name,
         "file": str(out),
@@ -151,8 +160,7 @@ def identify(
         "model_error_rms_um": res.model_error[0] * 1e6,
         "determined_ei_mm": res.ski.provenance.detail("determined_ei_mm"),
         "determined_z0_mm": res.ski.provenance.detail("determined_z0_mm"),
-        "bands": "95 % = 2 sd of the Laplace posterior (noise, prior, discretisation error)"
-        + boot_note,
+        "bands": res.ski.provenance.detail("bands"),
         "bootstrap_replicates": n_boot,
         "outliers": [
             {

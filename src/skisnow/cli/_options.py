@@ -62,6 +62,7 @@ OPTION_QUANTITIES: dict[str, str] = {
     "--max-nfev": "evaluations",
     "--mesh-mm": "beam_element_length",
     "--bootstrap": "bootstrap_replicates",
+    "--bootstrap-workers": "workers",
     "--target-ei-percent": "percent",
     "--target-z0-um": "noise_um",
     "--temperature-c": "temperature",

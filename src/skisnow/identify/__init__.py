@@ -16,13 +16,23 @@ May import: ski, bench
 from __future__ import annotations
 
 from skisnow.identify._bench_plan import BenchPlanPrediction, predict_identification_uncertainty
-from skisnow.identify._bootstrap import bootstrap_bands
+from skisnow.identify._bootstrap import (
+    Replicates,
+    bootstrap_bands,
+    replicate_scale,
+    run_replicates,
+    widen_bands,
+)
 from skisnow.identify._identify import IdentificationResult, identify_ski
 
 __all__ = [
     "BenchPlanPrediction",
     "IdentificationResult",
+    "Replicates",
     "bootstrap_bands",
     "identify_ski",
     "predict_identification_uncertainty",
+    "replicate_scale",
+    "run_replicates",
+    "widen_bands",
 ]

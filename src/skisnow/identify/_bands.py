@@ -33,6 +33,8 @@ from skisnow.identify._model import _design, _Problem
 from skisnow.ski import lower_hull_bracket
 
 __all__ = [
+    "LAPLACE_BANDS",
+    "LAPLACE_Z0_UNDERCOVER",
     "Posterior",
     "discrepancy_covariance",
     "identified_profiles",
@@ -52,6 +54,16 @@ _EI_STEP, _Z0_STEP = 0.02, 0.005
 #: The modes kept of the posterior (its square root at the stations, by singular values): those
 #: that carry 99.5 % of its variance, at most this many.
 MAX_MODES = 40
+
+#: The ``bands`` detail of an identified ski's provenance: which method made its bands and what
+#: they are known to be worth (the default, Laplace, bands under-cover z0; the coverage measured
+#: on independent benches, docs/validation/identification-uncertainty.md, "Sixth pass").
+LAPLACE_BANDS = "Laplace posterior, 95 % = 2 sd"
+LAPLACE_Z0_UNDERCOVER = (
+    "; its z0 bands are known to under-cover: the truth inside them at Z0_LAPLACE_PCT of the "
+    "determined stations of independent benches (target 90-98 %); a parametric bootstrap "
+    "(--bootstrap 8) widens them"
+)
 
 
 def _penalised_step(sol: _LmResult, pen):

@@ -13,22 +13,70 @@ bias of every penalty term - moved the z0 coverage by less than a point).
 The parametric bootstrap (Efron & Tibshirani 1993, ch. 6) sees it: benches simulated from the
 identified ski at the bench's own masses, load positions and stations (the fit's forward
 model, :func:`~skisnow.ski.solve_beam` with contact between nodes, Gaussian noise of each load
-case's estimated σ), each identified again from the default start, so each replicate takes its
-own path into its own basin. Their scatter about the identified ski, (ẑ* - ẑ) modulo the line
-the bench cannot see and log EI* - log ÊI, is added to the Laplace variance at every station
-(the two are independent in origin: the posterior's width within a basin, the bootstrap's the
-choice of basin). Its cost is ``replicates`` identifications (6-17 s CPU each on the shop plan).
+case's estimated σ), each identified again - from the default start, so each replicate takes
+its own path into its own basin, or (``warm``) from the identified ski. Their deviation from
+the identified ski, (ẑ* - ẑ) modulo the line the bench cannot see and log EI* - log ÊI, gives a
+scale at every station (:func:`replicate_scale`) that is added to the Laplace variance (the two
+are independent in origin: the posterior's width within a basin, the bootstrap's the choice of
+basin), and the replicates' deviations, rescaled to that scale, become extra modes of the ski's
+posterior, so the answers' intervals (:func:`skisnow.ski.sample_skis`) inherit the widened
+bands. Its cost is ``replicates`` identifications, run in ``jobs`` processes.
 """
 
 from __future__ import annotations
 
 import dataclasses
+import time
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
 
-__all__ = ["bootstrap_bands"]
+__all__ = [
+    "SCALES",
+    "Replicates",
+    "bootstrap_bands",
+    "replicate_scale",
+    "run_replicates",
+    "widen_bands",
+]
+
+#: The scales of the replicates' deviations :func:`replicate_scale` knows (module docstring).
+SCALES: tuple[str, ...] = ("rms", "mad", "trimmed")
+#: A replicate whose z0 deviation (rms over the determined stations) exceeds this many times the
+#: median replicate's is excluded from the ``'trimmed'`` scale and counted.
+FAR_OFF = 4.0
+#: The scale used unless another is asked for.
+DEFAULT_SCALE = "rms"
+
+
+@dataclass(frozen=True, kw_only=True)
+class Replicates:
+    """The replicates of a parametric bootstrap, as deviations from the identified ski.
+
+    Attributes
+    ----------
+    camber
+        ``(replicates, determined z0 stations)`` [m]: z0* - ẑ modulo the weighted line.
+    stiffness
+        ``(replicates, determined EI stations)``: log EI* - log ÊI.
+    misfit
+        Each replicate fit's rms of σ-normalised residuals.
+    converged
+        Whether each replicate's fit ended at its noise.
+    cpu
+        CPU seconds of each replicate (simulation and identification).
+    failed
+        Replicates whose identification raised (not in the arrays).
+    """
+
+    camber: NDArray[np.float64]
+    stiffness: NDArray[np.float64]
+    misfit: NDArray[np.float64]
+    converged: NDArray[np.bool_]
+    cpu: NDArray[np.float64]
+    failed: int = 0
 
 
 def _simulated_bench(result: Any, bench: Any, label: str, seed: int) -> Any:
@@ -66,6 +114,111 @@ def _line_free(d: NDArray[np.float64], x: NDArray[np.float64], w: NDArray[np.flo
     return d - a @ coef
 
 
+def _one_replicate(args: tuple) -> tuple | None:
+    """Simulate one bench, identify it, return its deviations (picklable: run in a process)."""
+    from skisnow.identify import _identify
+
+    result, bench, label, seed, warm, options = args
+    t0 = time.process_time()
+    rep_bench = _simulated_bench(result, bench, label, seed)
+    start = {"initial": result.ski} if warm else {}
+    try:
+        rep = _identify.identify_ski(rep_bench, ski=label, **start, **options)
+    except Exception:
+        return None
+    s, r = result.ski, rep.ski
+    cx, dz = np.asarray(s.camber_x), np.asarray(s.camber_determined, dtype=bool)
+    ex, de = np.asarray(s.stiffness_x), np.asarray(s.stiffness_determined, dtype=bool)
+    w = 1.0 / np.maximum(np.asarray(s.camber_sd, dtype=float)[dz], 1e-7)
+    zr = np.interp(cx, np.asarray(r.camber_x), np.asarray(r.camber_values))
+    dev_z = _line_free(zr[dz] - np.asarray(s.camber_values)[dz], cx[dz], w)
+    er = np.interp(ex, np.asarray(r.stiffness_x), np.log(np.asarray(r.stiffness_values)))
+    dev_e = er[de] - np.log(np.asarray(s.stiffness_values))[de]
+    return dev_z, dev_e, float(rep.misfit), bool(rep.converged), time.process_time() - t0
+
+
+def run_replicates(
+    result: Any,
+    bench: Any,
+    *,
+    replicates: int = 8,
+    seed: int = 101,
+    ski: str | None = None,
+    warm: bool = False,
+    jobs: int = 1,
+    **identify_options: Any,
+) -> Replicates:
+    """Simulate ``replicates`` benches of the identified ski and identify each again
+    (module docstring); ``jobs`` > 1 runs them in that many processes (one BLAS thread each).
+    ``warm``: each replicate starts from the identified ski instead of the default start."""
+    from skisnow._errors import InputError
+
+    if not (isinstance(replicates, int) and replicates >= 2):
+        raise InputError(f"replicates must be an integer >= 2, got {replicates!r}")
+    if not (isinstance(jobs, int) and jobs >= 1):
+        raise InputError(f"jobs must be an integer >= 1, got {jobs!r}")
+    label = bench.ski_name(ski)
+    tasks = [(result, bench, label, seed + b, warm, identify_options) for b in range(replicates)]
+    if jobs == 1:
+        outs = [_one_replicate(t) for t in tasks]
+    else:
+        from concurrent.futures import ProcessPoolExecutor
+
+        # forked workers; each identification runs on one BLAS thread (identify_ski's own rule)
+        with ProcessPoolExecutor(max_workers=min(jobs, replicates)) as pool:
+            outs = list(pool.map(_one_replicate, tasks))
+    done = [o for o in outs if o is not None]
+    nz = int(np.sum(result.ski.camber_determined))
+    ne = int(np.sum(result.ski.stiffness_determined))
+    return Replicates(
+        camber=np.array([o[0] for o in done]).reshape(len(done), nz),
+        stiffness=np.array([o[1] for o in done]).reshape(len(done), ne),
+        misfit=np.array([o[2] for o in done], dtype=float),
+        converged=np.array([o[3] for o in done], dtype=bool),
+        cpu=np.array([o[4] for o in done], dtype=float),
+        failed=len(outs) - len(done),
+    )
+
+
+def replicate_scale(dev: NDArray[np.float64], *, scale: str = DEFAULT_SCALE):
+    """The bootstrap's standard deviation at every station from the replicates' deviations
+    ``dev`` ``(replicates, stations)`` about the identified ski, and which replicates it used.
+
+    ``'rms'``: the root mean square over the replicates (Efron & Tibshirani 1993, eq. 6.6, about
+    the estimate instead of the replicates' mean, so a bias of the refits counts); ``'mad'``: the
+    median absolute deviation / 0.6745 (Hampel 1974; a Gaussian's sd, unmoved by up to half the
+    replicates ending far off); ``'trimmed'``: the rms of the replicates whose own rms deviation
+    is within :data:`FAR_OFF` times the median replicate's (the others excluded and counted).
+
+    Returns
+    -------
+    (sd, kept)
+        ``sd`` per station; ``kept`` a boolean per replicate.
+    """
+    from skisnow._errors import InputError
+
+    dev = np.asarray(dev, dtype=float)
+    kept = np.ones(dev.shape[0], dtype=bool)
+    if scale == "rms":
+        return np.sqrt(np.mean(dev**2, axis=0)), kept
+    if scale == "mad":
+        return np.median(np.abs(dev), axis=0) / 0.6745, kept
+    if scale == "trimmed":
+        size = np.sqrt(np.mean(dev**2, axis=1))
+        kept = size <= FAR_OFF * np.median(size)
+        return np.sqrt(np.mean(dev[kept] ** 2, axis=0)), kept
+    raise InputError(f"scale must be one of {', '.join(SCALES)}, got {scale!r}")
+
+
+def _extra_modes(dev: NDArray[np.float64], kept, sd: NDArray[np.float64]):
+    """The kept replicates' deviations as modes whose squares sum to ``sd²`` at every station
+    (their shapes, so the correlation along the ski, kept)."""
+    d = np.asarray(dev, dtype=float)[kept]
+    rms = np.sqrt(np.mean(d**2, axis=0))
+    factor = np.divide(sd, rms, out=np.zeros_like(sd), where=rms > 0)
+    return d * factor / np.sqrt(d.shape[0])
+
+
 def bootstrap_bands(
     result: Any,
     bench: Any,
@@ -74,6 +227,9 @@ def bootstrap_bands(
     seed: int = 101,
     ski: str | None = None,
     stiffness: bool = False,
+    scale: str = DEFAULT_SCALE,
+    warm: bool = False,
+    jobs: int = 1,
     **identify_options: Any,
 ) -> Any:
     """``result`` (an identification of ``bench``) with its z0 bands (and with ``stiffness``
@@ -94,6 +250,12 @@ def bootstrap_bands(
     stiffness
         Widen the EI bands as well (off: the Laplace bands with the smoothing bias already
         cover EI at 90-95 % of the determined stations).
+    scale
+        How the replicates' deviations become a standard deviation (:func:`replicate_scale`).
+    warm
+        Start each replicate from the identified ski (default: from the default start).
+    jobs
+        Processes the replicates run in.
     identify_options
         Passed to every replicate's :func:`~skisnow.identify.identify_ski`.
 
@@ -101,46 +263,61 @@ def bootstrap_bands(
     -------
     IdentificationResult
         The same result, its ski's ``camber_sd`` (and ``stiffness_log_sd``) at the determined
-        stations sqrt(Laplace² + bootstrap²), ``bootstrap`` the number of replicates that
-        ended and the median bootstrap standard deviations.
+        stations sqrt(Laplace² + bootstrap²), the replicates appended to its posterior's modes,
+        ``bootstrap`` the number of replicates used and the median bootstrap standard
+        deviations; the provenance names the scale, the replicates excluded and failed.
     """
     from skisnow._errors import InputError
-    from skisnow.identify._identify import identify_ski
 
-    if not (isinstance(replicates, int) and replicates >= 2):
-        raise InputError(f"replicates must be an integer >= 2, got {replicates!r}")
-    label = bench.ski_name(ski)
-    s = result.ski
-    cx, dz = np.asarray(s.camber_x), np.asarray(s.camber_determined, dtype=bool)
-    ex, de = np.asarray(s.stiffness_x), np.asarray(s.stiffness_determined, dtype=bool)
-    sd_z, sd_e = np.asarray(s.camber_sd, dtype=float), np.asarray(s.stiffness_log_sd, dtype=float)
-    z_fit, log_e = np.asarray(s.camber_values), np.log(np.asarray(s.stiffness_values))
-    w = 1.0 / np.maximum(sd_z[dz], 1e-7)
-    dev_z, dev_e = [], []
-    for b in range(replicates):
-        rep_bench = _simulated_bench(result, bench, label, seed + b)
-        try:
-            rep = identify_ski(rep_bench, ski=label, **identify_options)
-        except Exception:
-            continue
-        r = rep.ski
-        zr = np.interp(cx, np.asarray(r.camber_x), np.asarray(r.camber_values))
-        dev_z.append(_line_free(zr[dz] - z_fit[dz], cx[dz], w))
-        er = np.interp(ex, np.asarray(r.stiffness_x), np.log(np.asarray(r.stiffness_values)))
-        dev_e.append(er[de] - log_e[de])
-    if len(dev_z) < 2:
+    if scale not in SCALES:
+        raise InputError(f"scale must be one of {', '.join(SCALES)}, got {scale!r}")
+    reps = run_replicates(result, bench, replicates=replicates, seed=seed, ski=ski,
+                          warm=warm, jobs=jobs, **identify_options)  # fmt: skip
+    return widen_bands(result, reps, stiffness=stiffness, scale=scale)
+
+
+def widen_bands(result: Any, reps: Replicates, *, stiffness: bool = False,
+                scale: str = DEFAULT_SCALE) -> Any:  # fmt: skip
+    """``result`` with the bands widened by the replicates ``reps`` (:func:`bootstrap_bands`)."""
+    if reps.camber.shape[0] < 2:
         note = "bootstrap: fewer than two replicates ended; the bands are the Laplace ones"
         return dataclasses.replace(result, warnings=(*result.warnings, note))
-    boot_z = np.sqrt(np.mean(np.square(dev_z), axis=0))
-    boot_e = np.sqrt(np.mean(np.square(dev_e), axis=0))
-    new_z = sd_z.copy()
+    s = result.ski
+    dz = np.asarray(s.camber_determined, dtype=bool)
+    de = np.asarray(s.stiffness_determined, dtype=bool)
+    sd_z, sd_e = np.asarray(s.camber_sd, dtype=float), np.asarray(s.stiffness_log_sd, dtype=float)
+    boot_z, kept = replicate_scale(reps.camber, scale=scale)
+    # EI from the same replicates (a replicate excluded as far off is excluded whole)
+    boot_e = replicate_scale(reps.stiffness[kept], scale="rms" if scale == "trimmed" else scale)[0]
+    new_z, new_e = sd_z.copy(), sd_e.copy()
     new_z[dz] = np.hypot(sd_z[dz], boot_z)
-    new_e = sd_e.copy()
     if stiffness:
         new_e[de] = np.hypot(sd_e[de], boot_e)
-    details = (*s.provenance.details, ("bootstrap_replicates", len(dev_z)))
-    prov = dataclasses.replace(s.provenance, details=details)
-    new_ski = dataclasses.replace(s, camber_sd=new_z, stiffness_log_sd=new_e, provenance=prov)
-    summary = (len(dev_z), float(np.median(boot_z)) if boot_z.size else 0.0,
+    n_used = int(kept.sum())
+    changes: dict[str, Any] = {"camber_sd": new_z, "stiffness_log_sd": new_e}
+    if s.camber_modes is not None and s.stiffness_modes is not None:
+        mz = np.zeros((n_used, len(s.camber_x)))
+        mz[:, dz] = _extra_modes(reps.camber, kept, boot_z)
+        me = np.zeros((n_used, len(s.stiffness_x)))
+        if stiffness:
+            me[:, de] = _extra_modes(reps.stiffness, kept, boot_e)
+        changes["camber_modes"] = tuple(map(tuple, np.vstack([np.asarray(s.camber_modes), mz])))
+        changes["stiffness_modes"] = tuple(
+            map(tuple, np.vstack([np.asarray(s.stiffness_modes), me]))
+        )
+    what = "z0 and log EI" if stiffness else "z0"
+    bands = (f"Laplace posterior with a parametric bootstrap of {n_used} replicates added to "
+             f"{what} in quadrature ({scale} scale of the replicates), 95 % = 2 sd")  # fmt: skip
+    new = {"bands": bands, "bootstrap_replicates": n_used, "bootstrap_scale": scale,
+           "bootstrap_excluded": int((~kept).sum()), "bootstrap_failed": reps.failed}  # fmt: skip
+    details = (*((k, v) for k, v in s.provenance.details if k not in new), *new.items())
+    changes["provenance"] = dataclasses.replace(s.provenance, details=details)
+    new_ski = dataclasses.replace(s, **changes)
+    summary = (n_used, float(np.median(boot_z)) if boot_z.size else 0.0,
                float(np.median(boot_e)) if boot_e.size else 0.0)  # fmt: skip
-    return dataclasses.replace(result, ski=new_ski, bootstrap=summary)
+    warnings = result.warnings
+    if (~kept).any() or reps.failed:
+        warnings = (*warnings, f"bootstrap: {int((~kept).sum())} replicate(s) ended far from the "
+                    f"others and were excluded, {reps.failed} failed; "
+                    f"{n_used} of {kept.size + reps.failed} used")  # fmt: skip
+    return dataclasses.replace(result, ski=new_ski, bootstrap=summary, warnings=warnings)

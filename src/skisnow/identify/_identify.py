@@ -39,6 +39,8 @@ import numpy as np
 from skisnow._errors import ConvergenceError, InputError
 from skisnow._parallel import single_threaded_blas
 from skisnow.identify._bands import (
+    LAPLACE_BANDS,
+    LAPLACE_Z0_UNDERCOVER,
     UNDERSMOOTHING,
     discrepancy_covariance,
     identified_profiles,
@@ -419,8 +421,9 @@ def identify_ski(
                 ("outliers", len(outliers)),
                 (
                     "bands",
-                    "Laplace posterior, 95 % = 2 sd"
-                    + (", with the estimated smoothing bias" if smooth_bias is not None else ""),
+                    LAPLACE_BANDS
+                    + (", with the estimated smoothing bias" if smooth_bias is not None else "")
+                    + LAPLACE_Z0_UNDERCOVER,
                 ),
                 ("seconds", round(seconds, 2)),
             ),
