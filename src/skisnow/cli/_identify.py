@@ -65,7 +65,8 @@ def identify(
         typer.Option(
             "--bootstrap",
             help="Widen the z0 bands by a parametric bootstrap of this many replicates (each "
-            "one identification; 0: the Laplace bands only, 8 calibrated).",
+            "one identification from the default start, run in --bootstrap-workers processes; "
+            "0: the Laplace bands only, whose z0 bands under-cover; 8 calibrated).",
         ),
     ] = 0,
     bootstrap_workers: Annotated[
