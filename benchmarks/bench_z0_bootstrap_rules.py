@@ -150,9 +150,38 @@ def table(a) -> None:
             print(f"pooled: {summ}; replicate CPU median {np.median(cpus):.0f} s per row")
 
 
+def why(a) -> None:
+    """Per row and mode: the fit's z0 error, the replicates' spread about the fit (median of
+    their rms), the rms of their mean deviation (the bootstrap's estimate of the fit's bias)
+    and its correlation with the fit's actual error (all line-free, µm)."""
+    names = [*map(str, VALIDATION_SEEDS), "issue25"] if a.validation else _skis(a.skis)
+    print("| ski | noise µm | mode | z0 error rms | replicate rms (median, range) | "
+          "rms of the replicates' mean | corr(mean, error) | replicates' misfit |")  # fmt: skip
+    print("| --- | --- | --- | --- | --- | --- | --- | --- |")
+    for noise in a.noise_um:
+        for n in names:
+            p = Path(a.out) / f"{n}_{noise:g}.npz"
+            if not p.exists():
+                continue
+            f = dict(np.load(p))
+            err = _line_free(f["d"], f["x"], f["sd"])
+            for mode in a.modes:
+                if f"{mode}_z" not in f:
+                    continue
+                z = f[f"{mode}_z"]
+                r = 1e6 * np.sqrt(np.mean(z**2, axis=1))
+                mean = z.mean(axis=0)
+                c = float(np.corrcoef(mean, err)[0, 1])
+                mf = f[f"{mode}_misfit"]
+                print(f"| {n} | {noise:g} | {mode} | {1e6 * np.sqrt(np.mean(err**2)):.1f} | "
+                      f"{np.median(r):.1f} ({r.min():.1f}-{r.max():.1f}) | "
+                      f"{1e6 * np.sqrt(np.mean(mean**2)):.1f} | {c:+.2f} | "
+                      f"{mf.min():.2f}-{mf.max():.2f} |")  # fmt: skip
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    ap.add_argument("what", choices=["run", "table"])
+    ap.add_argument("what", choices=["run", "table", "why"])
     ap.add_argument("--skis", nargs="+", default=["1-4"])
     ap.add_argument("--validation", action="store_true")
     ap.add_argument("--noise-um", nargs="+", type=float, default=[5.0, 10.0])
@@ -165,8 +194,8 @@ def main() -> None:
     ap.add_argument("--cache", default=str(Path.home() / ".cache" / "skisnow-identify-bench"))
     ap.add_argument("--out", required=True)
     a = ap.parse_args()
-    if a.what == "table":
-        table(a)
+    if a.what in ("table", "why"):
+        (table if a.what == "table" else why)(a)
         return
     Path(a.out).mkdir(parents=True, exist_ok=True)
     names = [*map(str, VALIDATION_SEEDS), "issue25"] if a.validation else _skis(a.skis)
