@@ -85,8 +85,10 @@ def uncertainty_doc(iv: Any, *, note: str | None = None, zones=INTERVAL_ZONES) -
         return {"recorded": False, "note": note or "no uncertainty recorded"}
     out: dict[str, Any] = {
         "recorded": True,
-        "method": "posterior samples of the identified ski (Laplace posterior in its file), "
-        "each solved as the case; interval = sample quantiles, extended to hold the estimate",
+        "method": "posterior samples of the identified ski (the posterior's modes in its file: "
+        "the Laplace posterior's, and the bootstrap replicates' when identified with "
+        "--bootstrap; its bands detail says which), each solved as the case; interval = "
+        "sample quantiles, extended to hold the estimate",
         "level": iv.level,
         "samples": iv.samples,
         "seed": iv.seed,
