@@ -107,3 +107,26 @@ def test_bootstrap_option_reaches_every_replicate_and_one_is_refused(
     assert doc["bootstrap_replicates"] == 0
     assert any("fewer than two replicates" in w for w in doc["warnings"])
     assert doc["bands"].startswith("Laplace posterior") and "under-cover" in doc["bands"]
+
+
+def test_a_bootstrapped_ski_file_says_so_and_carries_the_replicates(capsys, tmp_path) -> None:
+    # two real replicates (in this process): the summary and the ski file name the band method,
+    # and the file's posterior gains one mode per replicate used, so the answers' intervals
+    # (sample_skis draws from the modes) inherit the widened z0 bands
+    from skisnow.ski import read_ski
+
+    bench = _bench(capsys, tmp_path, "b10", 10.0)
+    lap, boot = tmp_path / "lap.json", tmp_path / "boot.json"
+    _identify(capsys, ["identify", str(bench), "--out", str(lap), *_FAST])
+    code, doc, err = _identify(capsys, ["identify", str(bench), "--out", str(boot),
+                                        "--bootstrap", "2", "--bootstrap-workers", "0",
+                                        *_FAST])  # fmt: skip
+    assert code in (0, 3), err
+    n = doc["bootstrap_replicates"]
+    assert n == 2 and "parametric bootstrap of 2 replicates" in doc["bands"]
+    a, b = read_ski(lap), read_ski(boot)
+    assert b.provenance.detail("bands") == doc["bands"]
+    assert b.provenance.detail("bootstrap_scale") == "trimmed"
+    assert len(b.camber_modes) == len(a.camber_modes) + n
+    det = [i for i, d in enumerate(b.camber_determined) if d]
+    assert all(b.camber_sd[i] >= a.camber_sd[i] for i in det)
