@@ -80,8 +80,9 @@ def test_stiffness_bands_cover_the_truth_on_independent_benches() -> None:
     "compiled smoothed-contact Newton of the fifth pass (55.3 % before it; seed 8, a classic, "
     "the worst); the fit lands in one of "
     "several basins that trade z0 against EI, which no band at one fit can see; the "
-    "parametric bootstrap (skisnow.identify.bootstrap_bands, opt-in) is the remedy measured "
-    "in docs/validation/identification-uncertainty.md (fourth pass)",
+    "parametric bootstrap (skisnow.identify.bootstrap_bands, opt-in: 8 identifications) is "
+    "the remedy measured in docs/validation/identification-uncertainty.md (fourth and sixth "
+    "passes); the ski file's bands detail states the under-coverage",
     strict=False,
 )
 def test_camber_bands_cover_the_truth_on_independent_benches() -> None:
