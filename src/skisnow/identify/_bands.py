@@ -60,7 +60,7 @@ MAX_MODES = 40
 #: on independent benches, docs/validation/identification-uncertainty.md, "Sixth pass").
 LAPLACE_BANDS = "Laplace posterior, 95 % = 2 sd"
 LAPLACE_Z0_UNDERCOVER = (
-    "; its z0 bands are known to under-cover: the truth inside them at 36-65 % of the "
+    "; its z0 bands are known to under-cover: the truth inside them at 35-65 % of the "
     "determined stations of independent benches of held-out and seeded skis (shop plans, "
     "5-10 µm; target 90-98 %); a parametric bootstrap (--bootstrap 8) widens them"
 )
