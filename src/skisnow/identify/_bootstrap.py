@@ -167,10 +167,16 @@ def run_replicates(
     if jobs == 1:
         outs = [_one_replicate(t) for t in tasks]
     else:
+        import multiprocessing as mp
         from concurrent.futures import ProcessPoolExecutor
 
-        # forked workers; each identification runs on one BLAS thread (identify_ski's own rule)
-        with ProcessPoolExecutor(max_workers=min(jobs, replicates)) as pool:
+        # fresh workers (forkserver, spawn where there is none), not forks of this process: a
+        # fork of a multithreaded one (JAX, Dask, BLAS pools) may deadlock, and JAX warns; each
+        # identification runs on one BLAS thread (identify_ski's own rule)
+        ctx = mp.get_context(
+            "forkserver" if "forkserver" in mp.get_all_start_methods() else "spawn"
+        )
+        with ProcessPoolExecutor(max_workers=min(jobs, replicates), mp_context=ctx) as pool:
             outs = list(pool.map(_one_replicate, tasks))
     done = [o for o in outs if o is not None]
     nz = int(np.sum(result.ski.camber_determined))
