@@ -119,6 +119,29 @@ def interpolate_bench(cube, mass: float, position: float) -> np.ndarray:
     )
 
 
+def offgrid_cases(ski, x: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The 25 off-grid test cases: (masses [kg], positions [m], beam heights [m] at ``x``)."""
+    mm, pp = np.meshgrid(TEST_MASSES, TEST_POSITIONS)
+    mm, pp = mm.ravel(), pp.ravel()
+    truth = np.array(
+        [
+            solve_beam(ski, mass=float(m), load_position=float(p)).sample(x)
+            for m, p in zip(mm, pp, strict=True)
+        ]
+    )
+    return mm, pp, truth
+
+
+def interpolate_cases(cube, masses: np.ndarray, positions: np.ndarray) -> np.ndarray:
+    """:func:`interpolate_bench` at every (mass, position) of the test cases."""
+    return np.array(
+        [
+            interpolate_bench(cube, float(m), float(p))
+            for m, p in zip(masses, positions, strict=True)
+        ]
+    )
+
+
 def error_stats(err: np.ndarray, truth: np.ndarray) -> dict[str, float]:
     e = 1e6 * np.abs(err)
     near = truth < 0.2e-3
@@ -259,28 +282,13 @@ def main() -> None:
             net = shipped_network(name)
         meta = net.metadata
         trained_on = _training_bench(meta, hashes)
-        masses, positions = np.meshgrid(TEST_MASSES, TEST_POSITIONS)
-        masses, positions = masses.ravel(), positions.ravel()
+        masses, positions, truth = offgrid_cases(ski, x)
         t0 = time.process_time()
         pred = net.predict(x, masses, positions)  # all 25 cases in one vectorised call
         t_pred = time.process_time() - t0
-        truth = np.array(
-            [
-                solve_beam(ski, mass=float(m), load_position=float(p)).sample(x)
-                for m, p in zip(masses, positions, strict=True)
-            ]
-        )
         s_net = _stats_row(pred, truth)
         interp = {
-            label: _stats_row(
-                np.array(
-                    [
-                        interpolate_bench(cube, float(m), float(p))
-                        for m, p in zip(masses, positions, strict=True)
-                    ]
-                ),
-                truth,
-            )
+            label: _stats_row(interpolate_cases(cube, masses, positions), truth)
             for label, cube in cubes.items()
         }
         steps = meta.get("lm_steps_taken", ["?"])

@@ -19,12 +19,12 @@ import os
 import time
 
 import numpy as np
-from bench_network import TEST_MASSES, TEST_POSITIONS, bench_cube
+from bench_network import bench_cube, offgrid_cases
 from network_diagnosis import BENCHES
 from scipy.interpolate import RegularGridInterpolator, interp1d
 
 from skisnow.bench import run_bench
-from skisnow.ski import get_ski, solve_beam
+from skisnow.ski import get_ski
 
 
 def mixed(cube, m: np.ndarray, p: np.ndarray, kind: str) -> np.ndarray:
@@ -45,20 +45,13 @@ def main() -> None:
     ap.add_argument("--bench", default="dense", choices=sorted(BENCHES))
     args = ap.parse_args()
     print(f"load before: {os.getloadavg()}")
-    mm, pp = np.meshgrid(TEST_MASSES, TEST_POSITIONS)
-    mm, pp = mm.ravel(), pp.ravel()
     print(f"{'ski':8} {'interpolant':28} {'mean µm':>8} {'p95':>7} {'max':>7} {'near':>6} cpu s")
     for name in args.skis.split(","):
         ski = get_ski(name)
         masses, positions = BENCHES[args.bench]
         cube = bench_cube(run_bench(ski, masses=masses, load_positions=positions))
         ms, ps, x, h = cube
-        truth = np.array(
-            [
-                solve_beam(ski, mass=float(m), load_position=float(p)).sample(x)
-                for m, p in zip(mm, pp, strict=True)
-            ]
-        )
+        mm, pp, truth = offgrid_cases(ski, x)
         near = truth < 0.2e-3
         estimates = {}
         for method in ("linear", "pchip", "cubic"):

@@ -22,16 +22,15 @@ from pathlib import Path
 
 import numpy as np
 from bench_network import (
-    TEST_MASSES,
-    TEST_POSITIONS,
     TRAINING_MASSES,
     TRAINING_POSITIONS,
     bench_cube,
-    interpolate_bench,
+    interpolate_cases,
+    offgrid_cases,
 )
 
 from skisnow.bench import DEFAULT_LOAD_POSITIONS, DEFAULT_MASSES, run_bench
-from skisnow.ski import get_ski, solve_beam
+from skisnow.ski import get_ski
 
 BENCHES = {
     "paper": (DEFAULT_MASSES, DEFAULT_LOAD_POSITIONS),
@@ -88,17 +87,8 @@ def main() -> None:
     bench = run_bench(ski, masses=masses, load_positions=positions)
     cube = bench_cube(bench)
     x = cube[2]
-    mm, pp = np.meshgrid(TEST_MASSES, TEST_POSITIONS)
-    mm, pp = mm.ravel(), pp.ravel()
-    truth = np.array(
-        [
-            solve_beam(ski, mass=float(m), load_position=float(p)).sample(x)
-            for m, p in zip(mm, pp, strict=True)
-        ]
-    )
-    interp = np.array(
-        [interpolate_bench(cube, float(m), float(p)) for m, p in zip(mm, pp, strict=True)]
-    )
+    mm, pp, truth = offgrid_cases(ski, x)
+    interp = interpolate_cases(cube, mm, pp)
     record = {
         "label": args.label,
         "ski": args.ski,

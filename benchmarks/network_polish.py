@@ -28,16 +28,15 @@ from pathlib import Path
 
 import numpy as np
 from bench_network import (
-    TEST_MASSES,
-    TEST_POSITIONS,
     TRAINING_MASSES,
     TRAINING_POSITIONS,
     bench_cube,
-    interpolate_bench,
+    interpolate_cases,
+    offgrid_cases,
 )
 
 from skisnow.bench import run_bench
-from skisnow.ski import get_ski, solve_beam
+from skisnow.ski import get_ski
 
 
 def main() -> None:
@@ -74,17 +73,8 @@ def main() -> None:
     bench = run_bench(ski, masses=TRAINING_MASSES, load_positions=TRAINING_POSITIONS)
     cube = bench_cube(bench)
     xg = cube[2]
-    mm, pp = np.meshgrid(TEST_MASSES, TEST_POSITIONS)
-    mm, pp = mm.ravel(), pp.ravel()
-    truth = np.array(
-        [
-            solve_beam(ski, mass=float(m), load_position=float(p)).sample(xg)
-            for m, p in zip(mm, pp, strict=True)
-        ]
-    )
-    interp = np.array(
-        [interpolate_bench(cube, float(m), float(p)) for m, p in zip(mm, pp, strict=True)]
-    )
+    mm, pp, truth = offgrid_cases(ski, xg)
+    interp = interpolate_cases(cube, mm, pp)
     near = truth < 0.2e-3
 
     def offgrid(n) -> tuple[float, float]:
