@@ -20,6 +20,17 @@ def _profiles(bench) -> dict[tuple[float, float], tuple[np.ndarray, np.ndarray]]
     return out
 
 
+#: A deliberately tiny training run (widths 2,3,3,3,2,2; 20 Adam + 3 LM steps): reproducibility
+#: and bookkeeping do not need accuracy, and the tests stay cheap.
+TINY_RUN = {
+    "architecture": "2,3,3,3,2,2",
+    "adam_steps": 20,
+    "lm_steps": 3,
+    "lm_points": 200,
+    "report_every": 10,
+}
+
+
 def test_held_out_conditions_are_whole_profiles_inside_the_grid(small_network, small_bench):
     """Validation holds out whole load conditions (never random points), drawn from the
     interior of the bench grid, so the trained domain is the bench's (m, x_m) box."""
@@ -75,13 +86,7 @@ def test_seed_reproducibility(small_bench):
     """
     from skisnow.network import network_arrays, train_network
 
-    kw = {
-        "architecture": "2,3,3,3,2,2",
-        "adam_steps": 20,
-        "lm_steps": 3,
-        "lm_points": 200,
-        "report_every": 10,
-    }
+    kw = TINY_RUN
     a_net = train_network(small_bench, seed=11, **kw)
     b_net = train_network(small_bench, seed=11, **kw)
     a, b = network_arrays(a_net), network_arrays(b_net)
@@ -196,14 +201,7 @@ def test_an_added_member_is_the_member_of_the_larger_ensemble(small_bench):
     so a member added later to a trained network is the one a larger training would have had."""
     from skisnow.network import network_arrays, train_network
 
-    kw = {
-        "architecture": "2,3,3,3,2,2",
-        "adam_steps": 20,
-        "lm_steps": 3,
-        "lm_points": 200,
-        "report_every": 10,
-        "seed": 5,
-    }
+    kw = {**TINY_RUN, "seed": 5}
     pair = train_network(small_bench, ensemble=2, **kw)
     added = train_network(small_bench, first_member=1, **kw)
     assert added.scaling == pair.scaling
