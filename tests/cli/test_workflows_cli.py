@@ -59,6 +59,7 @@ def test_pairs_flags_the_worst_pair(capsys, tmp_path: Path) -> None:
     )  # fmt: skip
     assert code == 0
     assert len(doc["pairs"]) == 2
+    assert doc["converged"] is True  # the contact terms' solves (was null: nothing reported)
     assert all(p["distance"] == 0.0 for p in doc["pairs"])  # twins pair up
     # two perfect pairs: neither is a poor match, so neither is flagged (issue 26: a pair of
     # distance 0 was flagged WORST)

@@ -400,6 +400,7 @@ def pairs(
             progress=update,
         )
     _report_failures(result.failures)
+    report_converged(result.converged)  # the contact terms' solves (``converged`` of --json)
     worst = result.worst
     records = [
         {

@@ -100,6 +100,7 @@ class _Curves:
     line_load_x: np.ndarray
     line_load: np.ndarray  # [N/m]
     load: float
+    converged: bool  # the contact solve of the line load
 
 
 def _curves(
@@ -110,7 +111,7 @@ def _curves(
     m, p = np.array([body_mass]), np.array([load_position])
     route, _ = choose_route(fs, m, p, x)
     (h,) = loaded_profiles(fs, m, p, x, route=route)
-    sol = solve_loaded(
+    case = solve_loaded(
         fs,
         x,
         h,
@@ -118,7 +119,8 @@ def _curves(
         load_position=load_position,
         snow_modulus=snow_modulus,
         route=route,
-    ).solution
+    )
+    sol = case.solution
     grid = np.arange(np.ceil(ski.x_tail / _DX), np.floor(ski.x_tip / _DX) + 1) * _DX
     determined = np.ones(grid.size, dtype=bool)
     for what in ("stiffness", "camber"):
@@ -138,6 +140,7 @@ def _curves(
         line_load_x=x,
         line_load=sol.line_load,
         load=body_mass * STANDARD_GRAVITY,
+        converged=bool(case.converged),
     )
 
 
@@ -235,6 +238,8 @@ class Pairing:
     warnings
         ``(ski, message)``: what the identification of a bench file said about its ski (issue
         25: a fit above the noise and its cause, stretches its bench does not determine).
+    converged
+        Whether every contact solve behind the contact terms converged.
     """
 
     skis: tuple[str, ...]
@@ -243,6 +248,7 @@ class Pairing:
     distances: np.ndarray
     failures: tuple[tuple[str, str], ...]
     warnings: tuple[tuple[str, str], ...] = ()
+    converged: bool = True
 
     @property
     def worst(self) -> tuple[str, str, PairDistance] | None:
@@ -368,4 +374,5 @@ def match_pairs(
         distances=matrix,
         failures=tuple(failures),
         warnings=tuple((fs.label, w) for fs in ok for w in fs.warnings),
+        converged=all(c.converged for c in curves),
     )
