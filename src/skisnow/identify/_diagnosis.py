@@ -99,12 +99,20 @@ def correlated_excess(residuals: np.ndarray, sizes: Sequence[int]) -> float:
 
 
 class Diagnosis:
-    """``converged``, ``warnings`` (text) and ``causes`` (keys, main first)."""
+    """``converged``, ``warnings`` (text), ``causes`` (keys, main first) and ``delta``, the
+    fit's excess over the noise in units of σ (δ² = (χ² - dof) / n; 0 without an allowance)."""
 
-    __slots__ = ("causes", "converged", "warnings")
+    __slots__ = ("causes", "converged", "delta", "warnings")
 
-    def __init__(self, converged: bool, warnings: tuple[str, ...], causes: tuple[str, ...]):
+    def __init__(
+        self,
+        converged: bool,
+        warnings: tuple[str, ...],
+        causes: tuple[str, ...],
+        delta: float = 0.0,
+    ):
         self.converged, self.warnings, self.causes = converged, warnings, causes
+        self.delta = delta
 
 
 def _span(x: np.ndarray, flags: np.ndarray) -> list[tuple[float, float]]:
@@ -243,4 +251,4 @@ def diagnose(
             f"carry the prior's band. Load cases that would add it: {advice}"
         )
     converged = bool(at_noise and mesh_ok)
-    return Diagnosis(converged, tuple(warnings), tuple(causes))
+    return Diagnosis(converged, tuple(warnings), tuple(causes), delta)

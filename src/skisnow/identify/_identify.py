@@ -332,10 +332,9 @@ def identify_ski(
         case_misfit.append((c.mass, c.position, float(np.sqrt(np.mean(rk**2)))))
     masses = sorted({c.mass for c in cases})
     positions = sorted({round(c.position * 1e3, 6) for c in cases})
-    # the excess over the noise (σ² units: what σ_eff² = σ² + δ² allows, up to the cap) and
-    # its part correlated between neighbouring bins
+    # the part of the excess over the noise correlated between neighbouring bins (σ² units);
+    # the excess itself, δ, is the diagnosis's (what σ_eff² = σ² + δ² allows, up to the cap)
     corr2 = correlated_excess(r, [c.x.size for c in cases])
-    delta2 = max(chi2 - fitted.chi2_dof, 0.0) / r.size if np.isfinite(fitted.chi2_dof) else 0.0
     diag = diagnose(
         chi2=chi2, bound=fitted.chi2_bound, misfit=float(sol.misfit_rms), lm_status=sol.status,
         noise=problem.sigma, noise_given=noise, noise_data=float(estimate.pooled),
@@ -417,7 +416,7 @@ def identify_ski(
                 # null when it could not be estimated (a ski file holds finite numbers only)
                 ("mesh_error_rms_um", round(merr.rms * 1e6, 4) if np.isfinite(merr.rms) else None),
                 ("mesh_error_max_um", round(merr.max * 1e6, 4) if np.isfinite(merr.max) else None),
-                ("model_error_rms_um", round(float(np.sqrt(delta2)) * problem.sigma * 1e6, 4)),
+                ("model_error_rms_um", round(diag.delta * problem.sigma * 1e6, 4)),
                 ("outliers", len(outliers)),
                 (
                     "bands",
@@ -456,7 +455,7 @@ def identify_ski(
         outliers=tuple((o.mass, o.load_position, o.x, o.residual, o.z) for o in outliers),
         posterior_inflation=post.inflation,
         causes=diag.causes,
-        model_error=(float(np.sqrt(delta2)) * problem.sigma, float(np.sqrt(delta2))),
+        model_error=(diag.delta * problem.sigma, diag.delta),
     )
 
 
