@@ -1,5 +1,5 @@
 """How many cores skisnow uses by default: one definition for the FFT threads of the contact
-solver and the worker processes of a sweep."""
+solver and the worker processes of a sweep; how those processes start."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ import functools
 import os
 from collections.abc import Iterator
 
-__all__ = ["default_workers", "single_threaded_blas"]
+__all__ = ["default_workers", "process_start_method", "single_threaded_blas"]
 
 
 def default_workers() -> int:
@@ -23,6 +23,17 @@ def default_workers() -> int:
         return max(1, len(os.sched_getaffinity(0)))
     except AttributeError:  # pragma: no cover - not on Linux
         return max(1, os.cpu_count() or 1)
+
+
+def process_start_method() -> str:
+    """How skisnow's worker processes start: ``'forkserver'`` where the platform has it, else
+    ``'spawn'`` — fresh processes, never forks of this one: a fork of a multithreaded process
+    (JAX, Dask, BLAS pools) may deadlock, and JAX warns. Used by a sweep's local cluster
+    (:func:`skisnow.sweep.run_sweep`) and the bootstrap's replicates
+    (:func:`skisnow.identify.bootstrap_bands`)."""
+    import multiprocessing
+
+    return "forkserver" if "forkserver" in multiprocessing.get_all_start_methods() else "spawn"
 
 
 @functools.lru_cache(maxsize=1)

@@ -170,12 +170,11 @@ def run_replicates(
         import multiprocessing as mp
         from concurrent.futures import ProcessPoolExecutor
 
-        # fresh workers (forkserver, spawn where there is none), not forks of this process: a
-        # fork of a multithreaded one (JAX, Dask, BLAS pools) may deadlock, and JAX warns; each
-        # identification runs on one BLAS thread (identify_ski's own rule)
-        ctx = mp.get_context(
-            "forkserver" if "forkserver" in mp.get_all_start_methods() else "spawn"
-        )
+        from skisnow._parallel import process_start_method
+
+        # fresh workers, not forks of this process (process_start_method); each identification
+        # runs on one BLAS thread (identify_ski's own rule)
+        ctx = mp.get_context(process_start_method())
         with ProcessPoolExecutor(max_workers=min(jobs, replicates), mp_context=ctx) as pool:
             outs = list(pool.map(_one_replicate, tasks))
     done = [o for o in outs if o is not None]

@@ -212,12 +212,13 @@ def local_cluster(n_workers: int) -> Any:
     the solvers (:data:`PRELOAD`): they start in a fraction of the time of freshly spawned
     interpreters, and each does not import JAX/SciPy again.
     """
-    import multiprocessing
 
     import dask
     from distributed import LocalCluster
 
-    method = "forkserver" if "forkserver" in multiprocessing.get_all_start_methods() else "spawn"
+    from skisnow._parallel import process_start_method
+
+    method = process_start_method()
     settings = {
         "distributed.worker.multiprocessing-method": method,
         # Dask sets glibc's trim threshold to 64 KiB, which also pins the mmap threshold at
