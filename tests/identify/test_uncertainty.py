@@ -254,3 +254,45 @@ def test_a_smooth_model_discrepancy_is_covered_by_its_term() -> None:
         with_term += int(np.sum(err <= 2 * np.sqrt(np.diag(cov))))
     assert plain / (trials * k) < 0.75
     assert 0.93 < with_term / (trials * k) < 0.98
+
+
+def test_the_discrepancy_of_the_fits_own_excess_covers_the_truth() -> None:
+    # The smooth error of the test above (rms 0.5 σ over 50 mm), its size not given but read
+    # from each fit's residuals as the excess over the noise, δ² = (χ² - dof) / n (the
+    # diagnosis's δ, dof = n - tr(2H - H²)), and turned into the discrepancy's height rms by
+    # discrepancy_rms (residual weights 2: a noise of 0.5 in the heights' units, so the height
+    # rms is δ / 2). The excess is an estimate: over 200 correlation lengths (2000 bins, 10 m)
+    # its spread is small and part of the error is absorbed by the fit, so the coverage is
+    # checked within issue 25's 90-98 % (not the known-rms test's 93-98 %); over 1.5 m (300
+    # bins, 30 correlation lengths) δ reads 0 in a quarter of the fits and the coverage falls
+    # to 75 % (measured; the limit of a band from the fit's own excess, docs/validation/
+    # identification-uncertainty.md, seventh pass).
+    from skisnow.identify._bands import discrepancy_rms
+    from skisnow.identify._homotopy import restart_bound
+
+    rng = np.random.default_rng(11)
+    n, k = 2000, 12
+    x = np.linspace(0.0, 10.0, n)
+    jac = np.stack([np.cos(np.pi * i * x / 1.5) for i in range(k)], axis=1)
+    pen = 0.1 * np.eye(k)
+    rms, length = 0.5, 0.05
+    kern = rms**2 * np.exp(-0.5 * ((x[:, None] - x[None, :]) / length) ** 2)
+    root = np.linalg.cholesky(kern + 1e-10 * np.eye(n))
+    weights = np.full(n, 2.0)
+    dof = restart_bound(jac, pen)[1]
+    plain = with_term = 0
+    trials = 60
+    for _ in range(trials):
+        truth = 3.0 * rng.standard_normal(k)
+        y = jac @ truth + rng.standard_normal(n) + root @ rng.standard_normal(n)
+        sol = _linear_fit(jac, pen, y)
+        err = np.abs(sol.x - truth)
+        delta = np.sqrt(max(float(sol.fun @ sol.fun) - dof, 0.0) / n)
+        h_rms = discrepancy_rms(delta, [(x, weights)])
+        assert h_rms == pytest.approx(delta / 2.0)
+        disc = discrepancy_covariance(sol, [(x, weights)], rms=h_rms, length=length)
+        plain += int(np.sum(err <= 2 * np.sqrt(np.diag(posterior(sol).covariance))))
+        cov = posterior(sol, None, None, disc).covariance
+        with_term += int(np.sum(err <= 2 * np.sqrt(np.diag(cov))))
+    assert plain / (trials * k) < 0.75
+    assert 0.90 < with_term / (trials * k) < 0.98

@@ -37,6 +37,7 @@ __all__ = [
     "LAPLACE_Z0_UNDERCOVER",
     "Posterior",
     "discrepancy_covariance",
+    "discrepancy_rms",
     "identified_profiles",
     "posterior",
     "smoothing_bias",
@@ -177,6 +178,18 @@ DISCREPANCY_RMS = 1.0e-6
 DISCREPANCY_LENGTH = 0.15
 
 
+def discrepancy_rms(
+    excess: float, rows: list[tuple[NDArray[np.float64], NDArray[np.float64]]]
+) -> float:
+    """The height rms [m] of a discrepancy whose σ-normalised residuals carry, on average over
+    the bins, the excess ``excess``² (σ² units; the diagnosis's δ² = (χ² - dof) / n,
+    :class:`~skisnow.identify._diagnosis.Diagnosis`): ``excess`` / (mean weight²)^1/2 with
+    ``rows`` as in :func:`discrepancy_covariance` (a bin of c stations at noise σ_k has the
+    weight √c / σ_k, so on a bench of one station per bin and one noise it is δ σ)."""
+    w = np.concatenate([wk for _, wk in rows]) if rows else np.ones(1)
+    return float(excess) / float(np.sqrt(max(float(np.mean(w**2)), 1e-300)))
+
+
 def discrepancy_covariance(
     sol: _LmResult,
     rows: list[tuple[NDArray[np.float64], NDArray[np.float64]]],
@@ -189,7 +202,9 @@ def discrepancy_covariance(
     of each load case, independent between load cases (the model-discrepancy term of Kennedy &
     O'Hagan 2001, propagated through the linearised fit): A⁻¹ Jᵀ W Σ_d W J A⁻¹ with A = JᵀJ +
     PᵀP. ``rows``: per load case, in the order of the residuals, the bins' positions x [m] and
-    their residual weights (the σ-normalised residual is weight × height error).
+    their residual weights (the σ-normalised residual is weight × height error). The fit's own
+    stated excess over the noise gives ``rms`` by :func:`discrepancy_rms` (what
+    ``identify_ski(discrepancy_bands=True)`` uses).
 
     Why: white noise averages out over the stations, a smooth model error does not; on weakly
     determined directions (a smooth bowl of z0 traded against EI) a discrepancy of 0.2 σ rms,
