@@ -58,10 +58,11 @@ MAX_MODES = 40
 
 #: The ``bands`` detail of an identified ski's provenance: which method made its bands and what
 #: they are known to be worth (the default, Laplace, bands under-cover z0; the coverage measured
-#: on independent benches, docs/validation/identification-uncertainty.md, "Sixth pass").
+#: on independent benches, docs/validation/identification-uncertainty.md, sixth and seventh
+#: passes: held-out skis 35-40 %, seeded skis 5-24 68-79 %).
 LAPLACE_BANDS = "Laplace posterior, 95 % = 2 sd"
 LAPLACE_Z0_UNDERCOVER = (
-    "; its z0 bands are known to under-cover: the truth inside them at 35-65 % of the "
+    "; its z0 bands are known to under-cover: the truth inside them at 35-79 % of the "
     "determined stations of independent benches of held-out and seeded skis (shop plans, "
     "5-10 µm; target 90-98 %); a parametric bootstrap (--bootstrap 8) widens them"
 )
