@@ -39,6 +39,9 @@ def main() -> None:
     ap.add_argument("--noise-um", nargs="+", type=float, default=[5.0, 10.0])
     ap.add_argument("--store", default=str(STORE))
     ap.add_argument("--variants", nargs="+", default=["current", "hac-auto"])
+    ap.add_argument("--plan", default="shop", choices=["shop", "full"],
+                    help="the plan of the cached fits (full: only current, option, hac, neff "
+                    "— the gp-… variants build one kernel over all bins)")  # fmt: skip
     a = ap.parse_args()
     skis = [*("1001", "1002", "1003", "issue25")] if a.skis == ["validation"] else _skis(a.skis)
     print(f"load average at start: {os.getloadavg()}")
@@ -49,7 +52,7 @@ def main() -> None:
     for s in skis:
         true = true_ski(s)
         for n in a.noise_um:
-            path = Path(a.store) / f"fit_{s}_shop_{n:g}.pkl"
+            path = Path(a.store) / f"fit_{s}_{a.plan}_{n:g}.pkl"
             if not path.exists():
                 continue
             with open(path, "rb") as fh:

@@ -3,7 +3,8 @@
 Run:  uv run python benchmarks/bench_band_variants.py --fit --skis 1-4 --noise-um 5 10 --jobs 2
       uv run python benchmarks/bench_band_variants.py --skis 1-4 --noise-um 5 10
 
-``--fit`` runs ``identify_ski`` (default options, shop plan) on the independent reference bench
+``--fit`` runs ``identify_ski`` (default options, shop plan or ``--plan full``) on the independent
+reference bench
 (``bench_identify_coverage.bench_of``: 1 mm finite differences, seeded noise) and pickles the
 fit's linearisation (parameters, residuals, Jacobian, penalty, the problem, λ, the mesh error)
 in ``--store``. Without ``--fit`` it recomputes the bands of every cached fit under each
@@ -36,7 +37,7 @@ STORE = Path.home() / ".cache" / "skisnow-band-variants"
 
 
 def fit_one(args: tuple) -> str:
-    name, noise_um, cache, store = args
+    name, noise_um, cache, store, plan = args
     import skisnow.identify._identify as ident
 
     grabbed: dict = {}
@@ -51,13 +52,13 @@ def fit_one(args: tuple) -> str:
         return prof0(problem, parameters, post, x_tail, x_tip, bent=bent, measured=measured)
 
     ident.posterior, ident.identified_profiles = post_spy, prof_spy
-    bench = bench_of(name, "shop", noise_um, Path(cache))
+    bench = bench_of(name, plan, noise_um, Path(cache))
     t0 = time.process_time()
     res = ident.identify_ski(bench)
     grabbed["cpu"] = time.process_time() - t0
     grabbed["lam"] = res.regularisation
     grabbed["problem"]._beam_cache = []
-    out = Path(store) / f"fit_{name}_shop_{noise_um:g}.pkl"
+    out = Path(store) / f"fit_{name}_{plan}_{noise_um:g}.pkl"
     with open(out, "wb") as fh:
         pickle.dump(grabbed, fh)
     return (
@@ -93,12 +94,13 @@ def main() -> None:
     ap.add_argument("--cache", default=str(Path.home() / ".cache" / "skisnow-identify-bench"))
     ap.add_argument("--store", default=str(STORE))
     ap.add_argument("--variants", nargs="+", default=None)
+    ap.add_argument("--plan", default="shop", choices=["shop", "full"])
     a = ap.parse_args()
     Path(a.store).mkdir(parents=True, exist_ok=True)
     skis = [*("1001", "1002", "1003", "issue25")] if a.skis == ["validation"] else _skis(a.skis)
     print(f"load average at start: {os.getloadavg()}")
     if a.fit:
-        jobs = [(s, n, a.cache, a.store) for s in skis for n in a.noise_um]
+        jobs = [(s, n, a.cache, a.store, a.plan) for s in skis for n in a.noise_um]
         with ProcessPoolExecutor(max_workers=max(1, a.jobs)) as pool:
             for line in pool.map(fit_one, jobs):
                 print(line, flush=True)
@@ -114,7 +116,7 @@ def main() -> None:
     for s in skis:
         true = true_ski(s)
         for n in a.noise_um:
-            path = Path(a.store) / f"fit_{s}_shop_{n:g}.pkl"
+            path = Path(a.store) / f"fit_{s}_{a.plan}_{n:g}.pkl"
             if not path.exists():
                 continue
             with open(path, "rb") as fh:

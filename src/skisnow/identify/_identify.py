@@ -177,9 +177,10 @@ def identify_ski(
         discrepancy_covariance`, Kennedy & O'Hagan 2001) of the fit's own stated excess over
         the noise (the diagnosis's δ, :func:`~skisnow.identify._bands.discrepancy_rms`) over
         150 mm; nothing when the fit is at the noise (δ = 0). Off by default: it lifts the z0
-        coverage by a few points only (issue 25's seventh pass, docs/validation/
-        identification-uncertainty.md: the z0 error is the part of the bench's error common
-        to all load cases, which the residuals do not show).
+        coverage by 2-5 points only (held-out skis 37-45 %, skis 5-24 70-77 %; issue 25's
+        seventh pass, docs/validation/identification-uncertainty.md): what moves z0 is common
+        to all load cases, which the fit absorbs and the residuals do not show, and the misses
+        are a nonlinear trade of z0 against EI that no band at the fit sees.
     smoothing_bands
         Add the estimated smoothing bias to the bands (:func:`~skisnow.identify._bands.
         smoothing_bias`: the step to the fit at min(λ / 100, min(lambdas)), a rule calibrated
