@@ -8,10 +8,12 @@ The full plan of ``benchmarks/bench_identify_coverage.py`` on the independent re
 (``skisnow.bench.reference_bench`` at ``--dx-mm``), seeded noise (seed 1), then
 ``identify_ski`` in variants: ``default`` (GCV); ``truth`` (started at the true ski);
 ``lamX`` (λ fixed at X); ``nK`` (K log-EI coefficients); ``nK+lamX``; ``case-cv`` /
-``evidence`` (the other λ criteria); ``warm<variant>`` (started at the default fit, run
-first). Printed per variant: λ, EI rms [%] and z0 rms [µm] over the determined stations (as
-the coverage benchmark), misfit and its discrepancy bound [σ], exit code and cause, the shares
-in the 95 % bands, held-out rms [µm], CPU s, and the EI error [%] in 100 mm windows along the
+``evidence`` (the other λ criteria); ``leX`` (beam elements of X mm); ``sigmaX`` (the noise
+given, X µm: with ``--noise-um 0`` a fit without noise, the bias alone); ``warm<variant>``
+(started at the default fit, run first). Printed per variant: λ, EI rms [%] and z0 rms [µm]
+over the determined stations (as the coverage benchmark), misfit and its discrepancy bound [σ],
+δ (the excess over the noise) and the estimated mesh error [µm], exit code and cause, the
+shares in the 95 % bands, held-out rms [µm], CPU s, and the EI error [%] in 100 mm windows along the
 determined span (``along``: where the error is).
 
 ``--reference DX...``: no fit; the noise-free reference bench at each grid DX [mm] against the
@@ -45,6 +47,10 @@ def options(variant: str, true, base) -> dict:
     for tok in variant.split("+"):
         if tok.startswith("lam"):
             kw["regularisation"] = float(tok[3:])
+        elif tok.startswith("sigma"):
+            kw["noise"] = float(tok[5:]) * 1e-6
+        elif tok.startswith("le"):
+            kw["element_length"] = float(tok[2:]) * 1e-3
         elif tok.startswith("n") and tok[1:].isdigit():
             kw["n_stiffness"] = int(tok[1:])
         elif tok == "truth":
@@ -108,12 +114,16 @@ def main() -> None:
                "bound": float(np.sqrt(res.chi2_bound / res.n_bins)),
                "exit": 0 if res.converged else 3, "causes": ",".join(res.causes), "cpu": cpu,
                "held_out": held_out(res.ski, true), "along": along(res, true),
+               "delta_um": res.model_error[0] * 1e6, "mesh_um": res.mesh_error[0] * 1e6,
+               "mesh_max_um": res.mesh_error[1] * 1e6,
                "load": os.getloadavg()[0]}  # fmt: skip
         if a.out:
             with open(a.out, "a") as fh:
                 fh.write(json.dumps(row) + "\n")
         print(f"{v} | λ {row['lam']:g} | EI {row['ei_rms']:.2f} % | z0 {row['z0_rms']:.2f} µm | "
-              f"misfit {row['misfit']:.4f} (bound {row['bound']:.4f}) | exit {row['exit']} "
+              f"misfit {row['misfit']:.4f} (bound {row['bound']:.4f}) | "
+              f"δ {row['delta_um']:.2f} µm | "
+              f"mesh {row['mesh_um']:.2f} µm | exit {row['exit']} "
               f"{row['causes']} | in band {row['ei_in']}/{row['ei_n']}, {row['z0_in']}/"
               f"{row['z0_n']} | held-out {row['held_out']:.2f} µm | CPU {cpu:.1f} s\n"
               f"    along {row['along']}", flush=True)  # fmt: skip

@@ -9,7 +9,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from skisnow.constants import STANDARD_GRAVITY
-from skisnow.identify._model import _bins, _Case, _hermite_matrix
+from skisnow.identify._model import _bin_average, _bins, _Case, _hermite_matrix
 from skisnow.ski import boot_load_vector
 
 __all__ = ["load_cases"]
@@ -34,7 +34,8 @@ def load_cases(
 ) -> tuple[list[_Case], float, int, int]:
     """The binned load cases of the fit from raw profiles ``(mass [kg], x_m [m], x [m], h [m])``
     on the beam mesh ``nodes``: ``(cases, scatter sum of squares, samples, scatter degrees of
-    freedom)`` (also used by :func:`~skisnow.identify.predict_identification_uncertainty`)."""
+    freedom)``; each bin's model is the mean of the model at its stations, as the data are
+    (also used by :func:`~skisnow.identify.predict_identification_uncertainty`)."""
     cases, scatter, n_samples, scatter_dof = [], 0.0, 0, 0
     for m, p, xs, hs in raw:
         xb, hb, cnt, ss, dof_ = _bins(xs, hs, bin_width)
@@ -43,12 +44,14 @@ def load_cases(
         n_samples += xs.size
         force = m * STANDARD_GRAVITY
         f_boot = boot_load_vector(nodes, force, p, boot_length, "uniform")
+        average = _bin_average(xs, bin_width)
         cases.append(
             _Case(
                 mass=m, position=p, x=xb, h=hb, w=np.sqrt(cnt), force=force, f_boot=f_boot,
                 f_total=-float(np.sum(f_boot[0::2])),
                 m_total=-float(np.sum(f_boot[0::2] * nodes + f_boot[1::2])),
-                hermite=_hermite_matrix(nodes, xb),
+                hermite=(average @ _hermite_matrix(nodes, xs)).tocsr(), stations=xs,
+                average=average,
             )
         )  # fmt: skip
     return cases, scatter, n_samples, scatter_dof
