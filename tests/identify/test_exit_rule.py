@@ -116,13 +116,15 @@ def test_the_bound_with_an_estimated_noise_holds_its_level() -> None:
 
 
 @pytest.mark.slow
-def test_the_true_ski_on_a_fine_full_plan_exits_0_and_a_far_capped_fit_exits_3() -> None:
+def test_the_true_ski_on_a_fine_full_plan_is_at_the_noise_and_a_far_capped_fit_exits_3() -> None:
     # Issue 25's ski, 21 load cases (10-130 kg in 20 kg steps at -40, -120, -200 mm), stations
     # every 2 mm, 5 µm noise, heights by the independent reference bench at 0.5 mm (finite
     # differences, contact at every node; not the fit's forward model). Measured: started at the
-    # true ski the fit ends at 1.027 σ, above the noise-only bound 1.002 σ (8694 bins): the
-    # bench holds 1.4 µm rms the model does not reach (its 10 mm elements, the 60-coefficient
-    # basis at the stiffness steps), so the old rule exited 3.
+    # true ski the fit ended at 1.027 σ, above the noise-only bound 1.002 σ (8694 bins), while
+    # the model was evaluated at the bins' mean positions: the shovel's curvature across a bin
+    # (2 or 3 stations) is 1-2 µm rms on these plans, which the old rule exited 3 on and the
+    # model-error allowance passed with 1.4 µm stated. Since each bin's model is the mean over
+    # its stations (issue 25, seventh pass) the true ski's fit is within the noise-only bound.
     from skisnow.bench import issue25_ski, reference_bench
     from skisnow.identify import identify_ski
 
@@ -131,10 +133,8 @@ def test_the_true_ski_on_a_fine_full_plan_exits_0_and_a_far_capped_fit_exits_3()
                             load_positions=(-0.04, -0.12, -0.2), station_step=0.002,
                             noise=5e-6, seed=1, dx=0.5e-3)  # fmt: skip
     res = identify_ski(bench, initial=true)
-    assert not res.at_noise  # above the noise-only bound ...
-    assert res.converged and "model-error" in res.causes  # ... within the stated model error
-    assert 0.0 < res.model_error[1] <= MODEL_ERROR_MAX
-    assert any("µm rms" in w and "allowance" in w for w in res.warnings)
+    assert res.at_noise and res.converged and "model-error" not in res.causes
+    assert res.model_error[1] <= MODEL_ERROR_MAX
     # (a noise given 10 times too small, exit 3 with the noise named: the diagnosis above, and on
     # an issue-sized bench through the CLI, tests/cli/test_identify_robustness.py)
     # a far start (EI 300 N m² everywhere) stopped after three evaluations: exit 3
