@@ -73,3 +73,18 @@ def test_the_binned_model_meets_an_independent_bench_where_the_profile_bends():
     rms_old = float(np.sqrt(np.sum(counts * (r_old / w) ** 2) / counts.sum()))
     assert rms_old > 1.5e-6  # measured 2.07 µm
     assert rms_old > 2.5 * rms
+
+
+def test_one_station_per_bin_leaves_the_model_rows_bitwise_unchanged():
+    # a shop bench (stations every 10 mm, 5 mm bins): the bin mean of one station is the
+    # station itself, so shop-plan fits are those of the model evaluated at x̄ (bit for bit)
+    from skisnow.identify._model import _hermite_matrix
+
+    nodes = np.linspace(-1.0, 1.0, 201)
+    x = np.arange(-0.95, 0.95, 0.010) + 0.0013
+    h = 1e-3 * np.cos(3 * x)
+    (case,), *_ = load_cases([(40.0, -0.12, x, h)], nodes, 0.10, 0.005)
+    assert np.array_equal(case.w, np.ones(x.size))
+    assert abs(case.hermite - _hermite_matrix(nodes, case.x)).max() == 0.0
+    problem = _Problem([case], nodes, 20, 40, 1e-5)
+    assert np.array_equal(problem.phi_z_cases[0], _design(problem.t_z, case.x))
