@@ -11,7 +11,9 @@ dip through the stone anywhere). All load cases of the bench are fitted at once:
 * Parameters p: log EI(x) and z0(x) as cubic B-splines on uniform knots (``n_stiffness``
   coefficients, ~50 mm knots by default; z0 without its linear part, which the bench cannot
   see, knots at the station spacing within 10-20 mm by default).
-* Data: profiles averaged over bins of ``bin_width`` (x̄, h̄, count n); σ_k the noise of each
+* Data: profiles averaged over bins of ``bin_width`` (x̄, h̄, count n), h_model(x̄) read as the
+  same mean of the model at the bin's stations (:func:`skisnow.identify._model._bin_average`);
+  σ_k the noise of each
   load case from the scatter about local cubics of its deviation from the other profiles at the
   same stations, where the free camber cancels (:mod:`skisnow.identify._noise`, any station
   spacing); w the Huber weights of outlying bins (:mod:`skisnow.identify._robust`).
@@ -146,7 +148,8 @@ def identify_ski(
         spacing halved while that stays within ``n_camber_max`` (the discrepancy principle,
         Morozov 1966; :mod:`skisnow.identify._resolution`).
     bin_width
-        Profiles are averaged over bins of this width [m] (weights keep the full-data fit).
+        Profiles are averaged over bins of this width [m] (weights keep the full-data fit), and
+        so is the model (its mean at each bin's stations).
     element_length
         Beam element length [m] of the forward model (default :data:`DEFAULT_ELEMENT_LENGTH`);
         its discretisation error at the fit is reported (``mesh_error``).
