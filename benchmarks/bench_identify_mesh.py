@@ -19,7 +19,9 @@ seeded ``random_ski``):
    contact between nodes) converged at 0.5 mm elements — beside the fit's **estimate** of it
    (``skisnow.identify._mesh_error.mesh_error``: the change on the mesh of half the element
    length), and the ratio estimate / actual. Also the basis error: the spline ski's bench
-   against the true ski's (what no mesh removes).
+   against the true ski's (what no mesh removes); and the binning: the bins' mean of the
+   converged beam against its value at the bins' mean position (what the fit compared before
+   issue 25's seventh pass).
 
 No fit is run; report the load average with the times.
 """
@@ -112,6 +114,16 @@ def run_ski(name: str, plan: str, elements_mm: list[float], dx_mm: float, cache:
     conv = [converged(m, p, n_conv) for m, p, *_ in raw]
     d = np.concatenate([c[3] - f(c[2]) for c, f in zip(raw, conv, strict=True)])
     ref_vs_beam = 1e6 * float(np.sqrt(np.mean(d**2)))
+    # the binning: the bins' mean of the converged beam against its value at the bins' mean x
+    binned, *_ = load_cases(raw, nodes0, 0.10, 0.005)
+    b_sq, b_n = 0.0, 0.0
+    for c, f in zip(binned, conv, strict=True):
+        mean = f(c.x) if c.average is None else c.average @ f(c.stations)
+        b_sq += float(np.sum(c.w**2 * (mean - f(c.x)) ** 2))
+        b_n += float(np.sum(c.w**2))
+    binning = 1e6 * np.sqrt(b_sq / b_n)
+    print(f"{name}: bin mean of the converged beam minus its value at the bins' mean x: "
+          f"{binning:.2f} µm rms")  # fmt: skip
     print(
         f"{name}: the spline ski's reference bench at {dx_mm:g} mm against the converged beam "
         f"({n_conv} elements): {ref_vs_beam:.3f} µm rms, {1e6 * np.abs(d).max():.2f} max"
@@ -138,7 +150,7 @@ def run_ski(name: str, plan: str, elements_mm: list[float], dx_mm: float, cache:
                "estimate_rms_um": 1e6 * est.rms, "estimate_max_um": 1e6 * est.max,
                "ratio": est.rms / actual if actual > 0 else np.nan,
                "beam_rms_um": 1e6 * actual_b, "beam_max_um": 1e6 * float(np.abs(err_b).max()),
-               "ref_vs_beam_um": ref_vs_beam,
+               "ref_vs_beam_um": ref_vs_beam, "binning_um": binning,
                "basis_rms_um": 1e6 * float(np.sqrt(np.mean(basis**2))), "eval_cpu": cpu,
                "ref_cpu": t_ref, "dx_mm": dx_mm, "load": os.getloadavg()[0]}  # fmt: skip
         rows.append(row)
