@@ -12,6 +12,7 @@ import re
 import numpy as np
 import pytest
 
+from skisnow.identify._bands import discrepancy_rms
 from skisnow.identify._diagnosis import (
     MODEL_ERROR_MAX,
     correlated_excess,
@@ -58,7 +59,13 @@ def test_the_correlated_excess_estimates_a_smooth_error_and_ignores_noise() -> N
         assert correlated_excess(r, sizes) == pytest.approx(0.09, abs=4 * se)
 
 
-def _diagnosis(r: np.ndarray, *, lm_status: int = 1, noise_given: float | None = None):
+def _diagnosis(
+    r: np.ndarray,
+    *,
+    lm_status: int = 1,
+    noise_given: float | None = None,
+    height_scale: float | None = None,
+):
     n = r.size
     dof = float(n)  # residuals of no fit: their χ² at the noise has the mean n
     chi2 = float(r @ r)
@@ -69,6 +76,7 @@ def _diagnosis(r: np.ndarray, *, lm_status: int = 1, noise_given: float | None =
         element_length=0.01, ei_x=np.linspace(-0.9, 0.9, 91), ei_determined=np.ones(91, bool),
         bent=(-0.8, 0.8), cases=[(10.0 * (k + 1), -0.12) for k in range(_CASES)],
         correlated2=correlated_excess(r, [_BINS] * _CASES), n_bins=n, dof=dof,
+        height_scale=height_scale,
     )  # fmt: skip
 
 
@@ -82,6 +90,18 @@ def test_a_fit_at_the_noise_plus_a_stated_model_error_is_converged() -> None:
     assert stated == pytest.approx(1.5, abs=0.2)
     correlated = float(re.search(r"of which ([0-9.]+) µm is correlated", d.warnings[0]).group(1))
     assert correlated == pytest.approx(1.5, abs=0.2)
+
+
+def test_the_stated_error_is_a_height_on_benches_finer_than_their_bins() -> None:
+    # The same σ-normalised residuals, but each bin the mean of 4 stations (2 mm stations in
+    # 8 mm bins): a bin's weight is √4 / σ, so the 0.3 σ excess is a smooth height error of
+    # 0.3 σ / 2 = 0.75 µm, not the 1.5 µm that δ σ would read (issue 25, seventh pass)
+    rows = [(np.arange(_BINS) * 8e-3, np.full(_BINS, 2.0 / 5e-6)) for _ in range(_CASES)]
+    d = _diagnosis(_residuals(0.3, seed=1), height_scale=discrepancy_rms(1.0, rows))
+    assert d.converged and d.causes == ("model-error",)
+    stated = float(re.search(r"plus an error of ([0-9.]+) µm rms", d.warnings[0]).group(1))
+    assert stated == pytest.approx(0.75, abs=0.1)
+    assert d.delta == pytest.approx(_diagnosis(_residuals(0.3, seed=1)).delta)  # the rule's δ
 
 
 @pytest.mark.parametrize(

@@ -144,6 +144,7 @@ def diagnose(
     n_bins: int = 0,
     dof: float = float("nan"),
     noise_se: float = 0.0,
+    height_scale: float | None = None,
 ) -> Diagnosis:
     """The diagnosis of a fit (module docstring). ``case_misfits``: ``(mass [kg], x_m [m],
     misfit σ)`` per load case; ``bent``: the span between the outermost contact points of the
@@ -152,7 +153,12 @@ def diagnose(
     of freedom behind ``bound`` (0 / nan: no allowance for a model error, the bound alone);
     ``correlated2``: the part of the excess correlated between neighbouring bins
     (:func:`correlated_excess`, σ² units); ``noise_se``: the standard error of the log of an
-    estimated noise (0: the noise was given), which widens the bound (:func:`noise_bound`)."""
+    estimated noise (0: the noise was given), which widens the bound (:func:`noise_bound`);
+    ``height_scale``: the height [m] of one σ-unit of excess on this bench
+    (:func:`~skisnow.identify._bands.discrepancy_rms` of 1: a bin averaging c stations has c
+    times the weight of one station, so δ σ would over-read a smooth error by √c on benches
+    finer than their bins; default ``noise``, one station per bin)."""
+    scale = noise if height_scale is None else height_scale
     allowance = n_bins > 0 and bool(np.isfinite(dof))
     if noise_se > 0 and allowance:
         bound = max(bound, noise_bound(dof, noise_se))
@@ -223,8 +229,8 @@ def diagnose(
         warnings.append(
             f"stated model error: the fit ends at {misfit:.3g} σ (χ² {chi2:.0f}, above the "
             f"noise's bound {bound:.0f}): the bench is explained to its noise plus an error of "
-            f"{delta * noise * 1e6:.2g} µm rms ({delta:.2f} σ, within the allowance of "
-            f"{MODEL_ERROR_MAX:.2f} σ), of which {np.sqrt(correlated2) * noise * 1e6:.2g} µm is "
+            f"{delta * scale * 1e6:.2g} µm rms ({delta:.2f} σ, within the allowance of "
+            f"{MODEL_ERROR_MAX:.2f} σ), of which {np.sqrt(correlated2) * scale * 1e6:.2g} µm is "
             "correlated along the profiles (a smooth model or bench error: a stiffness step the "
             "splines smooth, the bench's own resolution) and the rest at the scale of the "
             "stations (a noise misestimate or station-scale bench errors); a shallow local "

@@ -338,6 +338,12 @@ def identify_ski(
     # the part of the excess over the noise correlated between neighbouring bins (σ² units);
     # the excess itself, δ, is the diagnosis's (what σ_eff² = σ² + δ² allows, up to the cap)
     corr2 = correlated_excess(r, [c.x.size for c in cases])
+    # per load case, the bins' positions and σ-normalised residual weights (a bin of c
+    # stations weighs √c): they turn δ into the height of a smooth error (and are the
+    # discrepancy's rows)
+    rows = [(c.x, c.w * problem.bin_weights[k] / problem.sigma_cases[k])
+            for k, c in enumerate(problem.cases)]  # fmt: skip
+    height_scale = discrepancy_rms(1.0, rows)
     diag = diagnose(
         chi2=chi2, bound=fitted.chi2_bound, misfit=float(sol.misfit_rms), lm_status=sol.status,
         noise=problem.sigma, noise_given=noise, noise_data=float(estimate.pooled),
@@ -345,14 +351,13 @@ def identify_ski(
         case_misfits=case_misfit, mesh_rms=merr.rms, element_length=merr.element_length,
         ei_x=prof.ex, ei_determined=prof.ei_determined, bent=bent,
         cases=[(c.mass, c.position) for c in cases], correlated2=corr2, n_bins=r.size,
+        height_scale=height_scale,
     )  # fmt: skip
     disc_rms = 0.0
     if discrepancy_bands and diag.delta > 0:
         # the fit's own stated excess δ as a smooth discrepancy (the diagnosis's δ: the stations
         # a bench determines do not depend on it, so the profiles are only re-banded)
-        rows = [(c.x, c.w * problem.bin_weights[k] / problem.sigma_cases[k])
-                for k, c in enumerate(problem.cases)]  # fmt: skip
-        disc_rms = discrepancy_rms(diag.delta, rows)
+        disc_rms = diag.delta * height_scale
         disc = discrepancy_covariance(sol, rows, rms=disc_rms)
         post = posterior(sol, merr.residual_change, smooth_bias, disc)
         prof = identified_profiles(
@@ -431,7 +436,7 @@ def identify_ski(
                 # null when it could not be estimated (a ski file holds finite numbers only)
                 ("mesh_error_rms_um", round(merr.rms * 1e6, 4) if np.isfinite(merr.rms) else None),
                 ("mesh_error_max_um", round(merr.max * 1e6, 4) if np.isfinite(merr.max) else None),
-                ("model_error_rms_um", round(diag.delta * problem.sigma * 1e6, 4)),
+                ("model_error_rms_um", round(diag.delta * height_scale * 1e6, 4)),
                 ("outliers", len(outliers)),
                 (
                     "bands",
@@ -477,7 +482,7 @@ def identify_ski(
         outliers=tuple((o.mass, o.load_position, o.x, o.residual, o.z) for o in outliers),
         posterior_inflation=post.inflation,
         causes=diag.causes,
-        model_error=(diag.delta * problem.sigma, diag.delta),
+        model_error=(diag.delta * height_scale, diag.delta),
     )
 
 

@@ -72,9 +72,12 @@ class IdentificationResult:
         :mod:`skisnow.identify._diagnosis`).
     model_error
         ``(rms [m], fraction of the noise)``: the fit's excess over the noise, δ² = (χ² - dof)
-        / n in σ² units; a fit that stopped on its decrement above the noise's bound is
-        converged when δ ≤ 0.46 σ (issue 25's misfit ≤ 1.1 σ), with δ stated
-        (:mod:`skisnow.identify._diagnosis`).
+        / n in σ² units, and the rms height of a smooth error that would leave it (δ σ on a
+        bench of one station per bin; δ σ / √c where the bins average c stations); a fit that
+        stopped on its decrement above the noise's bound is converged when δ ≤ 0.46 σ (issue
+        25's misfit ≤ 1.1 σ), with δ stated (:mod:`skisnow.identify._diagnosis`). Stated on
+        every fit: inside the noise's bound it is chance, not a defect (χ² exceeds its degrees
+        of freedom half the time).
     warnings
         The same in words, with what would help.
     """
