@@ -30,6 +30,7 @@ __all__ = [
     "print_cycle_uncertainty",
     "print_fleet_uncertainty",
     "print_intervals",
+    "tie_test_doc",
     "uncertainty_doc",
 ]
 
@@ -213,3 +214,20 @@ def print_cycle_uncertainty(name: str, doc: dict[str, Any]) -> None:
         "samples "
         f"(Monte Carlo error of the ends ≤ {mc:.0f} % of the width): {'; '.join(parts)}"
     )
+
+
+def tie_test_doc(test: Any) -> dict[str, Any] | None:
+    """The "same ski?" test of a pair in the JSON document (``None``: no bands)."""
+    if test is None:
+        return None
+    return {
+        "statistic": test.statistic,
+        "critical_value": test.critical,
+        "level": test.level,
+        "method": test.method,
+        "draws": test.draws,
+        "p_value": None if test.p_value != test.p_value else test.p_value,
+        "worst": test.worst[0],
+        "worst_at_mm": test.worst[1] * 1e3,
+        "verdict": test.text(),
+    }

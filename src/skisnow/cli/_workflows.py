@@ -379,6 +379,7 @@ def pairs(
     json_out: JsonOption = False,
 ) -> None:
     """Pair a fleet: the minimum-weight matching of the camber, stiffness and contact distance."""
+    from skisnow.cli._intervals import tie_test_doc
     from skisnow.workflows import (
         CAMBER_TOLERANCE,
         CONTACT_TOLERANCE,
@@ -416,6 +417,7 @@ def pairs(
             "poor_match": result.poor((a, b, d)),
             "worst": worst is not None and (a, b) == worst[:2],
             "tie_within_uncertainty": d.within_uncertainty,
+            "tie_test": tie_test_doc(d.uncertainty_test),
             "compared_mm": None if d.compared is None else [v * 1e3 for v in d.compared],
         }
         for a, b, d in result.pairs
@@ -429,7 +431,9 @@ def pairs(
         f"a poor match: d > {POOR_MATCH_DISTANCE:g} (the skis differ by more than the "
         "tolerances); the worst: the poor match of largest d; camber and stiffness compared "
         "only where both skis are determined by their data (identified skis); a tie within "
-        "uncertainty: the differences within the combined 95 % bands at 95 % of the stations"
+        "uncertainty: the camber and stiffness differences within the skis' simultaneous 95 % "
+        "band (largest difference in units of the combined band sd against its 95 % quantile "
+        "under the skis' posteriors, the sup-t band)"
     )
     matrix = [
         {"ski": s, **{t: float(result.distances[i, j]) for j, t in enumerate(result.skis)}}

@@ -8,7 +8,8 @@ the elastic half-space with force and moment balance (eq. 2–3), grouped into z
 * a fleet: :func:`compare_fleet` → :class:`FleetComparison` (metrics and contact at ½ and 1
   body weight, :data:`CRITERIA` for rankings), :func:`rank_across_snow` → :class:`SnowRanking`;
 * pairs: :func:`match_pairs` → :class:`Pairing` (minimum-weight matching of
-  :func:`pair_distance`);
+  :func:`pair_distance`; a pair is a tie within uncertainty by the simultaneous "same ski?"
+  test, :func:`same_ski_test`);
 * load cycles: :class:`LoadHistory`, :func:`read_load_history`, :data:`TEMPLATES`,
   :func:`template_history`, :func:`run_cycle` (an xarray Dataset over time),
   :func:`kick_contact_summary` (for an identified ski with 95 % intervals over posterior
@@ -66,6 +67,7 @@ from skisnow.workflows._pairs import (
     match_pairs,
     pair_distance,
 )
+from skisnow.workflows._same_ski import SameSkiTest, same_ski_test
 from skisnow.workflows._skis import FleetSki, resolve_fleet, resolve_ski
 from skisnow.workflows._templates import TEMPLATES, CycleTemplate, template_history
 from skisnow.workflows._ties import competition_ranks, tied_with
@@ -94,6 +96,7 @@ __all__ = [
     "PairDistance",
     "Pairing",
     "Proxy",
+    "SameSkiTest",
     "SnowRanking",
     "check_positions",
     "compare_fleet",
@@ -112,6 +115,7 @@ __all__ = [
     "resolve_fleet",
     "resolve_ski",
     "run_cycle",
+    "same_ski_test",
     "template_history",
     "tied_with",
 ]
