@@ -9,7 +9,7 @@ the elastic half-space with force and moment balance (eq. 2–3), grouped into z
   body weight, :data:`CRITERIA` for rankings), :func:`rank_across_snow` → :class:`SnowRanking`;
 * pairs: :func:`match_pairs` → :class:`Pairing` (minimum-weight matching of
   :func:`pair_distance`; a pair is a tie within uncertainty by the simultaneous "same ski?"
-  test, :func:`same_ski_test`);
+  test, :func:`same_ski_test`; on two skis' shapes alone, :func:`same_ski`);
 * load cycles: :class:`LoadHistory`, :func:`read_load_history`, :data:`TEMPLATES`,
   :func:`template_history`, :func:`run_cycle` (an xarray Dataset over time),
   :func:`kick_contact_summary` (for an identified ski with 95 % intervals over posterior
@@ -46,11 +46,10 @@ from skisnow.workflows._fleet import (
     Criterion,
     FleetComparison,
     FleetEntry,
-    SnowRanking,
     compare_fleet,
-    rank_across_snow,
 )
 from skisnow.workflows._fleet_intervals import interval_records
+from skisnow.workflows._fleet_snow import SnowRanking, rank_across_snow
 from skisnow.workflows._history import (
     MAX_GAP_FACTOR,
     LoadHistory,
@@ -66,6 +65,7 @@ from skisnow.workflows._pairs import (
     Pairing,
     match_pairs,
     pair_distance,
+    same_ski,
 )
 from skisnow.workflows._same_ski import SameSkiTest, same_ski_test
 from skisnow.workflows._skis import FleetSki, resolve_fleet, resolve_ski
@@ -115,6 +115,7 @@ __all__ = [
     "resolve_fleet",
     "resolve_ski",
     "run_cycle",
+    "same_ski",
     "same_ski_test",
     "template_history",
     "tied_with",
