@@ -41,13 +41,15 @@ from __future__ import annotations
 import itertools
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
 from skisnow._errors import InputError, SkisnowError
 from skisnow.constants import STANDARD_GRAVITY
+from skisnow.ski import Ski
 from skisnow.workflows._fleet import DEFAULT_LOAD_POSITION
-from skisnow.workflows._same_ski import SameSkiTest
+from skisnow.workflows._same_ski import SameSkiTest, same_ski_test
 from skisnow.workflows._skis import FleetSki, resolve_fleet
 from skisnow.workflows._solve import choose_route, loaded_profiles, solve_loaded, stations
 
@@ -60,6 +62,7 @@ __all__ = [
     "Pairing",
     "match_pairs",
     "pair_distance",
+    "same_ski",
 ]
 
 CAMBER_TOLERANCE = 0.1e-3
@@ -128,7 +131,18 @@ def _curves(
         snow_modulus=snow_modulus,
         route=route,
     )
-    sol = case.solution
+    return _Curves(
+        **_shape(ski),
+        line_load_x=x,
+        line_load=case.solution.line_load,
+        load=body_mass * STANDARD_GRAVITY,
+        converged=bool(case.converged),
+    )
+
+
+def _shape(ski: Any) -> dict[str, Any]:
+    """The camber and stiffness of ``ski`` on the common grid, its bands, modes and what its
+    data determine (the fields of :class:`_Curves` that do not depend on the snow)."""
     grid = np.arange(np.ceil(ski.x_tail / _DX), np.floor(ski.x_tip / _DX) + 1) * _DX
     determined = np.ones(grid.size, dtype=bool)
     for what in ("stiffness", "camber"):
@@ -139,7 +153,7 @@ def _curves(
             )
     has_bands = ski.stiffness_log_sd is not None and ski.camber_sd is not None
     modes = ski.has_posterior and has_bands
-    return _Curves(
+    return dict(
         x=grid,
         z0=ski.free_camber(grid),
         log_ei=np.log(ski.stiffness(grid)),
@@ -148,10 +162,6 @@ def _curves(
         modes_z0=_on_grid(ski.camber_x, ski.camber_modes, grid) if modes else None,
         modes_log_ei=_on_grid(ski.stiffness_x, ski.stiffness_modes, grid) if modes else None,
         determined=determined,
-        line_load_x=x,
-        line_load=sol.line_load,
-        load=body_mass * STANDARD_GRAVITY,
-        converged=bool(case.converged),
     )
 
 
@@ -162,7 +172,9 @@ def _on_grid(xs, modes, grid: np.ndarray) -> np.ndarray:
     return PchipInterpolator(np.asarray(xs), np.asarray(modes), axis=1)(grid)
 
 
-def _distance(a: _Curves, b: _Curves) -> PairDistance:
+def _compare_shapes(a: Any, b: Any):
+    """``(stations, Δz0, Δ log EI, test)`` over the stations where both skis are determined
+    (``test``: the "same ski?" test, ``None`` when neither ski carries bands)."""
     lo, hi = max(a.x[0], b.x[0]), min(a.x[-1], b.x[-1])
     if hi - lo < 0.5:
         raise InputError("two skis overlap over less than 0.5 m of running surface")
@@ -178,31 +190,45 @@ def _distance(a: _Curves, b: _Curves) -> PairDistance:
     xs = a.x[ia][:n][both]
     dz = (a.z0[ia][:n] - b.z0[ib][:n])[both]
     dk = (a.log_ei[ia][:n] - b.log_ei[ib][:n])[both]
+    if a.sd_z0 is None and b.sd_z0 is None:
+        return xs, dz, dk, None
+
+    def on(v: np.ndarray | None, ic: np.ndarray) -> np.ndarray | None:
+        return None if v is None else v[..., ic][..., :n][..., both]
+
+    def band(sd: np.ndarray | None, ic: np.ndarray) -> np.ndarray:
+        return np.zeros(int(both.sum())) if sd is None else on(sd, ic)
+
+    def modes(what: str) -> np.ndarray | None:
+        ms = [on(getattr(c, what), ic) for c, ic in ((a, ia), (b, ib))]
+        with_sd = [c.sd_z0 is not None for c in (a, b)]
+        if any(m is None and w for m, w in zip(ms, with_sd, strict=True)):
+            return None  # a ski with bands but no modes: the Bonferroni bound
+        return np.vstack([m for m in ms if m is not None])
+
+    test = same_ski_test(
+        x=xs, dz=dz, dk=dk,
+        sd_z=np.hypot(band(a.sd_z0, ia), band(b.sd_z0, ib)),
+        sd_k=np.hypot(band(a.sd_log_ei, ia), band(b.sd_log_ei, ib)),
+        modes_z=modes("modes_z0"), modes_k=modes("modes_log_ei"),
+    )  # fmt: skip
+    return xs, dz, dk, test
+
+
+def same_ski(a: Ski, b: Ski) -> SameSkiTest | None:
+    """The simultaneous "same ski?" test of two skis' camber and stiffness over the stations
+    both are determined by their data (:mod:`skisnow.workflows._same_ski`); ``None`` when
+    neither carries bands. No contact is solved (the test is the one of
+    :func:`pair_distance`)."""
+    from types import SimpleNamespace
+
+    return _compare_shapes(SimpleNamespace(**_shape(a)), SimpleNamespace(**_shape(b)))[3]
+
+
+def _distance(a: _Curves, b: _Curves) -> PairDistance:
+    xs, dz, dk, test = _compare_shapes(a, b)
     camber_rms = float(np.sqrt(np.mean(dz**2)))
     stiff_rms = float(np.sqrt(np.mean(dk**2)))
-    test = None
-    if a.sd_z0 is not None or b.sd_z0 is not None:
-        from skisnow.workflows._same_ski import same_ski_test
-
-        def on(c: _Curves, v: np.ndarray | None, ic: np.ndarray) -> np.ndarray | None:
-            return None if v is None else v[..., ic][..., :n][..., both]
-
-        def band(c: _Curves, sd: np.ndarray | None, ic: np.ndarray) -> np.ndarray:
-            return np.zeros(int(both.sum())) if sd is None else on(c, sd, ic)
-
-        def modes(what: str) -> np.ndarray | None:
-            ms = [on(c, getattr(c, what), ic) for c, ic in ((a, ia), (b, ib))]
-            with_sd = [c.sd_z0 is not None for c in (a, b)]
-            if any(m is None and w for m, w in zip(ms, with_sd, strict=True)):
-                return None  # a ski with bands but no modes: the Bonferroni bound
-            return np.vstack([m for m in ms if m is not None])
-
-        test = same_ski_test(
-            x=xs, dz=dz, dk=dk,
-            sd_z=np.hypot(band(a, a.sd_z0, ia), band(b, b.sd_z0, ib)),
-            sd_k=np.hypot(band(a, a.sd_log_ei, ia), band(b, b.sd_log_ei, ib)),
-            modes_z=modes("modes_z0"), modes_k=modes("modes_log_ei"),
-        )  # fmt: skip
     # line loads on one grid spanning both skis (zero off a ski)
     grid = np.linspace(
         min(a.line_load_x[0], b.line_load_x[0]),
