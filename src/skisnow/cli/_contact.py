@@ -269,7 +269,8 @@ def contact(
         from skisnow.pipeline import case_intervals
 
         iv = case_intervals(case, samples=samples, base=base_modulus_mpa * 1e6, n_across=n_across)
-    for note in case.warnings:
+    topology = None if iv is None else iv.topology_note()  # the samples' patch topologies
+    for note in (*case.warnings, *([topology] if topology else [])):
         say(f"warning: {note}", style="yellow")
     # exit code 3 when unconverged, 4 outside a model's domain (the last note of an unconverged
     # case is the solver's own, the others are domain warnings)
@@ -330,7 +331,7 @@ def contact(
         "residual": sol.residual,
         "force_residual": sol.force_residual,
         "moment_residual": sol.moment_residual,
-        "warnings": list(case.warnings),
+        "warnings": [*case.warnings, *([topology] if topology else [])],
         "uncertainty": uncertainty_doc(iv, note=no_uncertainty_note(case.ski, samples)),
     }
     if case.flexible is not None:

@@ -99,6 +99,14 @@ def uncertainty_doc(iv: Any, *, note: str | None = None, zones=INTERVAL_ZONES) -
         "why_enough": WHY_ENOUGH,
         "intervals": {},
     }
+    if iv.sample_topologies:
+        from skisnow.pipeline import topology_text
+
+        out["patch_topology"] = {
+            "estimate": topology_text(iv.topology),
+            "sample_shares": iv.topology_shares(),
+            "warning": iv.topology_note(),
+        }
     for zone in zones:
         rec = {}
         for q, (key, f) in UNIT_KEYS.items():
@@ -170,6 +178,11 @@ def print_fleet_uncertainty(
             )
         else:
             console.print(f"{printable(rec['ski'])}: {printable(rec['uncertainty'])}")
+    if any(r.get("not_comparable_with") for r in ranking):
+        console.print(
+            "n= : not comparable by this criterion (different patch topologies, see the "
+            "warnings; compare the regions' shares instead)"
+        )
     if any(r["within_uncertainty"] for r in ranking):
         console.print("n= : a tie within uncertainty (the skis' 95 % intervals overlap)")
     elif any(r["tied"] for r in ranking):

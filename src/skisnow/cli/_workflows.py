@@ -242,6 +242,7 @@ def compare(
         for lo, hi, before, after in snow.changes
     ]
     notes = [e.route_note for e in cmp.entries if e.route_note]
+    topology = [*cmp.topology_warnings(criterion), *snow.warnings]  # patch-based: not comparable
     intervals = fleet_intervals(cmp, samples)
     real_records, real_ranking = [], []
     if base:
@@ -269,7 +270,8 @@ def compare(
         files += [str(p) for p in save_figure(plot_fleet(cmp), out / "fleet")]
         files += [str(p) for p in save_figure(plot_snow_ranking(snow), out / "snow_ranking")]
     doc = {
-        **run_annotations(),
+        **(ann := run_annotations()),
+        "warnings": [*ann["warnings"], *topology],
         "body_mass_kg": body_mass_kg,
         "snow_modulus_mpa": snow_modulus_mpa,
         "load_position_mm": load_position_mm,
@@ -356,6 +358,8 @@ def compare(
             )
         for note in notes:
             show(f"note: {note}")
+        for w in topology:
+            say(f"warning: {w}", style="yellow")
         for f in files:
             show(f"wrote {f}")
     if cmp.failures:

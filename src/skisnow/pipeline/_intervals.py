@@ -29,7 +29,7 @@ is taken over the samples where the zone has contact.
 from __future__ import annotations
 
 import dataclasses
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
@@ -45,11 +45,17 @@ __all__ = [
     "DEFAULT_LEVEL",
     "DEFAULT_SAMPLES",
     "INTERVAL_ZONES",
+    "MIXED_SHARE",
+    "PATCH_ZONES",
     "ZONE_QUANTITIES",
     "Intervals",
+    "Topology",
     "case_intervals",
     "case_quantities",
     "sample_intervals",
+    "topology_shares",
+    "topology_text",
+    "zone_topology",
 ]
 
 #: Posterior samples per answer by default (Monte Carlo error of the ends ~7.5 % of the width).
@@ -61,6 +67,15 @@ INTERVAL_ZONES: tuple[str, ...] = ("rear", "middle", "front", "total", "kick")
 #: Per zone: the attribute of :class:`skisnow.contact.Zone` (SI units).
 ZONE_QUANTITIES: tuple[str, ...] = ("length", "area", "mean_pressure", "max_pressure", "load_share")
 _BOOTSTRAP = 200
+#: The paper's zones made of whole patches (whose answers can jump with the patch topology).
+PATCH_ZONES: tuple[str, ...] = ("rear", "middle", "front")
+#: Share of posterior samples in another topology above which an answer is said to straddle
+#: two topologies (the tail an interval at 95 % leaves out on each side).
+MIXED_SHARE: float = 0.025
+#: The patch topology of a contact: patches per paper zone, and whether the footprint is merged
+#: (the zones are then the regions), ``(("rear", 1), ("middle", 0), ("front", 1), ("merged",
+#: 0))``.
+Topology = tuple[tuple[str, int], ...]
 
 
 @dataclass(frozen=True, kw_only=True)
@@ -83,6 +98,9 @@ class Intervals:
         Per name: the bootstrap Monte Carlo standard error of the interval's ends (the larger
         of the two), as a fraction of the interval's width (0 for a zero-width interval,
         round-off included).
+    topology, sample_topologies
+        The patch topology of the estimate's contact and of each solved sample's
+        (:func:`zone_topology`; empty when the answers are not a case's zones).
     """
 
     estimate: Mapping[str, float]
@@ -94,6 +112,30 @@ class Intervals:
     failed: int = 0
     unconverged: int = 0
     mc_error: Mapping[str, float] = field(default_factory=dict)
+    topology: Topology | None = None
+    sample_topologies: tuple[Topology, ...] = ()
+
+    def topology_shares(self, zones: Sequence[str] = PATCH_ZONES) -> dict[str, float]:
+        """The share of the solved samples in each patch topology of ``zones`` (text of
+        :func:`topology_text` → share), the estimate's first."""
+        return topology_shares(self.sample_topologies, self.topology, zones)
+
+    def topology_note(self, zones: Sequence[str] = PATCH_ZONES) -> str | None:
+        """A warning when more than :data:`MIXED_SHARE` of the samples have another patch
+        topology of ``zones`` than the estimate: their answers jump between topologies (a
+        glide patch joined to the kick contact or split from it), so their intervals join
+        two different definitions; the regions' answers do not jump. ``None`` otherwise."""
+        shares = self.topology_shares(zones)
+        if not shares or 1.0 - next(iter(shares.values())) <= MIXED_SHARE:
+            return None
+        parts = ", ".join(f"{100 * v:.1f} % '{k}'" for k, v in shares.items())
+        return (
+            f"the posterior samples differ in patch topology ({parts}; the first is the "
+            f"estimate's): the {'/'.join(zones)} zones' answers jump between a glide patch "
+            "joined to the kick contact and split from it, so their intervals span two "
+            "definitions; the regions (rear_glide, kick_zone, front_glide) do not jump: "
+            "compare by their shares (rear_glide.load_share, ...)"
+        )
 
     def interval(self, name: str) -> tuple[float, float]:
         """``(low, high)`` of ``name``."""
@@ -103,6 +145,42 @@ class Intervals:
         """The largest Monte Carlo error of an end over all answers (fraction of the width)."""
         vals = [v for v in self.mc_error.values() if np.isfinite(v)]
         return float(max(vals)) if vals else 0.0
+
+
+def zone_topology(zones: Any) -> Topology:
+    """The patch topology of a contact's zones (:class:`skisnow.contact.ZoneMetrics`): the
+    number of patches of the rear, middle and front zones and whether they are merged.
+
+    Under the paper's rule (:func:`skisnow.contact.paper_zones`) a glide patch reaching into the
+    kick zone stays whole in its glide zone; once the kick contact separates from it, the kick
+    part becomes a ``middle`` patch, and once a patch runs from glide zone to glide zone the
+    zones become the regions (``merged``): the zones' answers jump between these topologies,
+    the regions' do not."""
+    return (*((z, int(zones[z].patches)) for z in PATCH_ZONES), ("merged", int(zones.merged)))
+
+
+def topology_text(top: Topology, zones: Sequence[str] = PATCH_ZONES) -> str:
+    """``'rear 1 patch, middle 0 patches'`` for the ``zones`` of ``top`` (``', merged into the
+    regions'`` when merged)."""
+    d = dict(top)
+    text = ", ".join(f"{z} {d[z]} patch{'' if d[z] == 1 else 'es'}" for z in zones)
+    return text + (", merged into the regions" if d["merged"] else "")
+
+
+def topology_shares(
+    samples: Sequence[Topology], estimate: Topology | None, zones: Sequence[str] = PATCH_ZONES
+) -> dict[str, float]:
+    """Share of ``samples`` per topology text of ``zones``, the estimate's first (also when no
+    sample has it); empty without samples."""
+    if not samples:
+        return {}
+    texts = [topology_text(t, zones) for t in samples]
+    out: dict[str, float] = {}
+    if estimate is not None:
+        out[topology_text(estimate, zones)] = 0.0
+    for t in texts:
+        out[t] = out.get(t, 0.0) + 1.0 / len(texts)
+    return out
 
 
 def case_quantities(case: Case) -> dict[str, float]:
@@ -258,14 +336,17 @@ def case_intervals(
     warm = case.model == "strip" and case.ski_model == "rigid"
     start = np.asarray(case.solution.pressure) if warm else None
     unconverged = 0
+    tops: list[Topology] = []
 
     def answers(s: Ski) -> dict[str, float]:
         nonlocal unconverged
         c = solve_case(s, start=start, **kw)
         unconverged += not c.converged
+        tops.append(zone_topology(c.zones))
         return case_quantities(c)
 
     out = sample_intervals(
         ski, answers, estimate=case_quantities(case), samples=samples, seed=seed, level=level
     )
-    return dataclasses.replace(out, unconverged=unconverged)
+    return dataclasses.replace(out, unconverged=unconverged, topology=zone_topology(case.zones),
+                               sample_topologies=tuple(tops))  # fmt: skip

@@ -194,24 +194,56 @@ class FleetComparison:
         overlapping 95 % intervals: *a tie within uncertainty*, ``within_uncertainty``) share
         a rank (``1, 1, 3``), say so in ``tied`` and name each other in ``tied_with``
         (:mod:`skisnow.workflows._ties`); ``interval`` is ``[low, high]`` or ``None`` (no
-        uncertainty recorded: the value counts as exact).
+        uncertainty recorded: the value counts as exact). On a patch-based zone (rear, middle,
+        front) skis in different patch topologies, or whose samples straddle two, tie as *not
+        comparable by this criterion* (``not_comparable_with``, ``patch_topology``;
+        :mod:`skisnow.workflows._topology`).
         """
         from skisnow.workflows._ties import competition_ranks, tied_with
+        from skisnow.workflows._topology import comparable
 
         crit = _criterion(criterion)
         recs = self.records()
         values = [float(r[crit.column]) for r in recs]
         ivs = [e.interval(crit.column) for e in self.entries]
         bounds = [iv if iv is not None else (v, v) for iv, v in zip(ivs, values, strict=True)]
-        ranks = competition_ranks(values, better=crit.better, intervals=bounds)
-        ties = tied_with(values, better=crit.better, intervals=bounds)
+        tops = self.topologies(criterion)
+        ok = comparable(tops)
+        ranks = competition_ranks(values, better=crit.better, intervals=bounds, comparable=ok)
+        ties = tied_with(values, better=crit.better, intervals=bounds, comparable=ok)
         return [
             {"rank": int(ranks[i]), "tied": bool(ties[i]), "ski": recs[i]["ski"],
              crit.column: values[i], "tied_with": [recs[j]["ski"] for j in ties[i]],
              "interval": None if ivs[i] is None else list(ivs[i]),
-             "within_uncertainty": any(values[j] != values[i] for j in ties[i])}
+             "within_uncertainty": any(values[j] != values[i] for j in ties[i]),
+             "not_comparable_with": [recs[j]["ski"] for j in np.flatnonzero(~ok[i])],
+             "patch_topology": None if tops[i] is None else tops[i].describe()}
             for i in crit.order(values)
         ]  # fmt: skip
+
+    def topologies(self, criterion: str) -> list[Any]:
+        """Each ski's patch topology on a patch-based criterion at full body weight (with its
+        posterior samples' shares), ``None`` each for another criterion."""
+        from skisnow.workflows._topology import patch_zone, ski_topology
+
+        zone = patch_zone(_criterion(criterion).column)
+        if zone is None:
+            return [None] * len(self.entries)
+        return [
+            ski_topology(e.cases["full"].zones,
+                         () if e.intervals is None else e.intervals["full"].sample_topologies,
+                         zone)
+            for e in self.entries
+        ]  # fmt: skip
+
+    def topology_warnings(self, criterion: str) -> list[str]:
+        """The warnings of a patch-based criterion whose skis are not comparable by it."""
+        from skisnow.workflows._topology import patch_zone, topology_warnings
+
+        zone = patch_zone(_criterion(criterion).column)
+        labels = [e.ski.label for e in self.entries]
+        return [] if zone is None else topology_warnings(labels, self.topologies(criterion),
+                                                         criterion, zone)  # fmt: skip
 
 
 def _criterion(name: str) -> Criterion:

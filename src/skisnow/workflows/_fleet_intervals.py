@@ -98,28 +98,34 @@ def snow_intervals(
     samples: int,
     n_points: int,
     seed: int = 0,
-) -> np.ndarray | None:
+) -> tuple[np.ndarray, list[tuple[Any, ...]]] | None:
     """95 % intervals, shape ``(moduli, 2)``, of a criterion ``value(zones)`` on each snow
-    modulus [Pa] for the ski of ``entry`` (``estimates``: its values there); ``None`` without a
-    posterior or samples. Each posterior sample is solved at full body weight on every modulus
-    (warm-started along the moduli, the beam route)."""
-    from skisnow.pipeline import sample_intervals, solve_case
+    modulus [Pa] for the ski of ``entry`` (``estimates``: its values there), and per modulus
+    the patch topologies of the solved samples (:func:`skisnow.pipeline.zone_topology`);
+    ``None`` without a posterior or samples. Each posterior sample is solved at full body
+    weight on every modulus (warm-started along the moduli, the beam route)."""
+    from skisnow.pipeline import sample_intervals, solve_case, zone_topology
 
     ski = entry.ski.ski
     if samples <= 0 or not ski.has_posterior:
         return None
     route = {} if ski_model == "flexible" else {"profile_source": "beam"}
 
+    tops: list[list[Any]] = []
+
     def answers(s: Any) -> dict[str, float]:
-        out, start = {}, None
+        out, start, mine = {}, None, []
         for j, e in enumerate(moduli):
             case = solve_case(s, mass=body_mass, load_position=load_position,
                               snow_modulus=float(e), n_points=n_points, ski_model=ski_model,
                               start=start, **route)  # fmt: skip
             start = case.solution.pressure if ski_model == "rigid" else None
             out[str(j)] = value(case.zones)
+            mine.append(zone_topology(case.zones))
+        tops.append(mine)  # a sample whose load is not supported raised before: not counted
         return out
 
     est = {str(j): float(v) for j, v in enumerate(estimates)}
     iv = sample_intervals(ski, answers, estimate=est, samples=samples, seed=seed)
-    return np.array([iv.interval(str(j)) for j in range(len(moduli))])
+    by_modulus = [tuple(t[j] for t in tops) for j in range(len(moduli))]
+    return np.array([iv.interval(str(j)) for j in range(len(moduli))]), by_modulus

@@ -47,6 +47,10 @@ class SnowRanking:
     #: ``(n_skis, n_moduli, 2)``: the 95 % interval of each value (low = high for a ski
     #: without bands; ``None`` for a ranking made without samples)
     intervals: np.ndarray | None = None
+    #: skis not comparable by a patch-based criterion at a modulus (their patch topologies
+    #: differ, or their posterior samples straddle two: :mod:`skisnow.workflows._topology`);
+    #: they tie there
+    warnings: tuple[str, ...] = ()
 
     def winners(self) -> list[str]:
         """The best ski at each modulus (tied best skis joined by `` = ``)."""
@@ -89,6 +93,10 @@ def rank_across_snow(
     if not entries:
         raise InputError("no ski of the fleet could be compared")
     values = np.full((len(entries), moduli.size), np.nan)
+    from skisnow.workflows._topology import patch_zone
+
+    zone = patch_zone(crit.column)
+    est_tops: list[list[Any]] = [[None] * moduli.size for _ in entries]
     total = len(entries) * moduli.size
     done = 0
     for i, entry in enumerate(entries):
@@ -122,25 +130,36 @@ def rank_across_snow(
             )
             start = case.solution.pressure
             values[i, j] = _value(crit, case.zones)
+            est_tops[i][j] = case.zones if zone is not None else None
             done += 1
             if progress is not None:
                 progress(done, total)
     labels = tuple(e.ski.label for e in entries)
     from skisnow.workflows._fleet_intervals import snow_intervals
     from skisnow.workflows._ties import competition_ranks
+    from skisnow.workflows._topology import comparable, ski_topology, topology_warnings
 
     bounds = np.stack([values, values], axis=-1)  # (skis, moduli, 2); a ski without bands: exact
+    sample_tops: list[list[Any]] = [[()] * moduli.size for _ in entries]
     for i, entry in enumerate(entries if crit.snow_dependent else ()):
         c = comparison
         iv = snow_intervals(entry, lambda z: _value(crit, z), values[i], moduli,
                             body_mass=c.body_mass, load_position=c.load_position,
                             ski_model=c.ski_model, samples=samples, n_points=n_points)  # fmt: skip
-        bounds[i] = bounds[i] if iv is None else iv
+        if iv is not None:
+            bounds[i], sample_tops[i] = iv
     ranks = np.empty_like(values, dtype=np.int64)
-    orders = []
+    orders, warnings = [], []
     for j in range(moduli.size):
         order = crit.order(values[:, j])
-        ranks[:, j] = competition_ranks(values[:, j], better=crit.better, intervals=bounds[:, j])
+        tops = [None if est_tops[i][j] is None else ski_topology(est_tops[i][j],
+                sample_tops[i][j], zone) for i in range(len(entries))]  # fmt: skip
+        ok = comparable(tops)
+        if zone is not None:
+            warnings += topology_warnings(labels, tops, crit.name, zone,
+                                          where=f" at {moduli[j] * 1e-6:g} MPa")  # fmt: skip
+        ranks[:, j] = competition_ranks(values[:, j], better=crit.better, intervals=bounds[:, j],
+                                        comparable=ok)  # fmt: skip
         # the order with its ties: skis sharing a rank form one group (sorted by name)
         groups: dict[int, list[str]] = {}
         for k in order:
@@ -159,6 +178,7 @@ def rank_across_snow(
         ranks=ranks,
         changes=changes,
         intervals=bounds if samples else None,
+        warnings=tuple(warnings),
     )
 
 

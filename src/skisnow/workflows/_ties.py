@@ -5,7 +5,9 @@ equal (two identical skis give bit-identical numbers through the one-case pipeli
 intervals ``(low, high)`` around the values, when the intervals overlap ("tie within
 uncertainty"). A ski's rank is 1 + the number of skis strictly better than it (standard
 competition ranking, "1 = 1 3"): tied skis share a rank, and the rule needs no transitivity,
-so it holds unchanged for overlapping intervals.
+so it holds unchanged for overlapping intervals. Skis whose values are not comparable by a
+criterion (``comparable[i, j]`` False: a patch-based zone in two different patch topologies,
+:mod:`skisnow.workflows._topology`) are never ranked apart: they tie.
 """
 
 from __future__ import annotations
@@ -31,8 +33,10 @@ def better_than(
     *,
     better: Literal["lower", "higher"],
     intervals: Sequence[tuple[float, float]] | None = None,
+    comparable: np.ndarray | None = None,
 ) -> np.ndarray:
-    """``B[i, j]``: ski i is strictly better than ski j (values, or whole intervals, apart).
+    """``B[i, j]``: ski i is strictly better than ski j (values, or whole intervals, apart,
+    and comparable: ``comparable[i, j]``, default all).
 
     A NaN value (no answer) is worse than every number and ties with another NaN; an infinite
     value is a real answer at its end of the order.
@@ -41,7 +45,7 @@ def better_than(
     nan = np.isnan(lo) | np.isnan(hi)
     b = hi[:, None] < lo[None, :] if better == "lower" else lo[:, None] > hi[None, :]
     b = np.where(nan[:, None] | nan[None, :], ~nan[:, None] & nan[None, :], b)
-    return b
+    return b if comparable is None else b & np.asarray(comparable, dtype=bool)
 
 
 def competition_ranks(
@@ -49,9 +53,11 @@ def competition_ranks(
     *,
     better: Literal["lower", "higher"],
     intervals: Sequence[tuple[float, float]] | None = None,
+    comparable: np.ndarray | None = None,
 ) -> np.ndarray:
     """Rank of each ski (1 = best): 1 + the number of skis strictly better; ties share a rank."""
-    return 1 + better_than(values, better=better, intervals=intervals).sum(axis=0)
+    b = better_than(values, better=better, intervals=intervals, comparable=comparable)
+    return 1 + b.sum(axis=0)
 
 
 def tied_with(
@@ -59,8 +65,9 @@ def tied_with(
     *,
     better: Literal["lower", "higher"],
     intervals: Sequence[tuple[float, float]] | None = None,
+    comparable: np.ndarray | None = None,
 ) -> list[list[int]]:
     """For each ski, the other skis it ties with (neither strictly better)."""
-    b = better_than(values, better=better, intervals=intervals)
+    b = better_than(values, better=better, intervals=intervals, comparable=comparable)
     tie = ~b & ~b.T
     return [[j for j in np.flatnonzero(tie[i]).tolist() if j != i] for i in range(len(tie))]
