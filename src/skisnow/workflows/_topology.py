@@ -106,20 +106,19 @@ def topology_warnings(
     labels: Sequence[str], tops: Sequence[SkiTopology | None], criterion: str, zone: str,
     where: str = "",
 ) -> list[str]:  # fmt: skip
-    """One warning per ski whose topology makes the criterion not comparable with another."""
+    """One warning per pair of skis that a patch-based criterion cannot compare (``where``:
+    appended to the pair's names, e.g. the snow modulus)."""
     ok = comparable(tops)
     out = []
-    for i, t in enumerate(tops):
-        others = [labels[j] for j in np.flatnonzero(~ok[i])]
-        if t is None or not others:
-            continue
+    for i, j in zip(*np.nonzero(np.triu(~ok, 1)), strict=True):
+        a, b = tops[i], tops[j]
+        assert a is not None and b is not None  # comparable() is True for None
         out.append(
-            f"{labels[i]}{where}: {criterion} is not comparable with {', '.join(others)} "
-            f"(patch topology of the {'/'.join(TOPOLOGY_ZONES[zone])} zones: {t.describe()}"
-            f"; {', '.join(others)}: "
-            + "; ".join(tops[j].describe() for j in np.flatnonzero(~ok[i]) if tops[j])
-            + f"): the {zone} zone's answer jumps when a glide patch joins the kick contact or "
-            "splits from it, so these skis tie by this criterion; compare the regions instead "
-            "(the rear_glide, kick and front_glide load shares, which do not jump)"
+            f"{labels[i]} / {labels[j]}{where}: {criterion} not comparable (patch topology of "
+            f"the {'/'.join(TOPOLOGY_ZONES[zone])} zones, {labels[i]}: {a.describe()}; "
+            f"{labels[j]}: {b.describe()}): the {zone} zone's answer jumps when a glide patch "
+            "joins the kick contact or splits from it, so the two tie by this criterion; "
+            "compare the regions instead (the rear_glide, kick and front_glide load shares, "
+            "which do not jump)"
         )
     return out
