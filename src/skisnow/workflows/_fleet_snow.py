@@ -14,7 +14,10 @@ import numpy as np
 
 from skisnow._errors import InputError
 from skisnow.workflows._fleet import Criterion, FleetComparison, _criterion
+from skisnow.workflows._fleet_intervals import snow_intervals
 from skisnow.workflows._solve import choose_route, loaded_profiles, solve_loaded, stations
+from skisnow.workflows._ties import competition_ranks
+from skisnow.workflows._topology import comparable, patch_zone, ski_topology, topology_warnings
 
 __all__ = ["SnowRanking", "rank_across_snow"]
 
@@ -83,7 +86,10 @@ def rank_across_snow(
     profile does not depend on the snow and is computed once per ski; the contact along the
     moduli is warm-started from the previous one). With ``samples``, a ski carrying its
     posterior gets the 95 % interval of its value on every modulus (``intervals``), and skis
-    whose intervals overlap tie there (a tie within uncertainty).
+    whose intervals overlap tie there (a tie within uncertainty). On a patch-based criterion
+    (a paper zone: rear, middle, front) skis in different patch topologies at a modulus, or
+    whose samples straddle two, tie there as not comparable, named in ``warnings``
+    (:mod:`skisnow.workflows._topology`).
     """
     crit = _criterion(criterion)
     moduli = np.asarray(sorted(float(e) for e in snow_moduli))
@@ -93,8 +99,6 @@ def rank_across_snow(
     if not entries:
         raise InputError("no ski of the fleet could be compared")
     values = np.full((len(entries), moduli.size), np.nan)
-    from skisnow.workflows._topology import patch_zone
-
     zone = patch_zone(crit.column)
     est_tops: list[list[Any]] = [[None] * moduli.size for _ in entries]
     total = len(entries) * moduli.size
@@ -135,9 +139,6 @@ def rank_across_snow(
             if progress is not None:
                 progress(done, total)
     labels = tuple(e.ski.label for e in entries)
-    from skisnow.workflows._fleet_intervals import snow_intervals
-    from skisnow.workflows._ties import competition_ranks
-    from skisnow.workflows._topology import comparable, ski_topology, topology_warnings
 
     bounds = np.stack([values, values], axis=-1)  # (skis, moduli, 2); a ski without bands: exact
     sample_tops: list[list[Any]] = [[()] * moduli.size for _ in entries]
