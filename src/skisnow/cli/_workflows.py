@@ -484,6 +484,9 @@ def pairs(
             ],
         )
         console.print(definition)
+        for a, b, d in result.pairs:
+            if d.uncertainty_test is not None:
+                show(f"{a} / {b}: {d.uncertainty_test.text()}")
         for w in pair_warnings:
             show(f"warning: {w}")
         if result.spare:
