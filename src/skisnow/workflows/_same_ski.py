@@ -56,6 +56,8 @@ import numpy as np
 from numpy.typing import NDArray
 from scipy.special import ndtri
 
+from skisnow._errors import InputError
+
 __all__ = ["DEFAULT_TIE_DRAWS", "DEFAULT_TIE_LEVEL", "SameSkiTest", "same_ski_test"]
 
 #: The test's level: a ski paired with its own identification ties with this probability when
@@ -129,6 +131,10 @@ def same_ski_test(
     level, draws, seed
         The test's level, the Gaussian draws for its critical value and their seed.
     """
+    if not 0.0 < level < 1.0:
+        raise InputError(f"level: need a probability in (0, 1), got {level!r}")
+    if not (isinstance(draws, int) and draws >= 100):
+        raise InputError(f"draws: need an integer >= 100 for a quantile, got {draws!r}")
     x = np.asarray(x, dtype=float)
     sz = np.maximum(np.asarray(sd_z, float), _FLOOR * max(float(np.median(sd_z)), 1e-300))
     sk = np.maximum(np.asarray(sd_k, float), _FLOOR * max(float(np.median(sd_k)), 1e-300))
