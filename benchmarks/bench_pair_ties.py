@@ -16,7 +16,8 @@ For each true ski × noise seed:
   bench cached in ``--cache``, seeded Gaussian noise added (seed = the row's seed);
 * ``skisnow.identify.identify_ski`` (defaults, BLAS on one thread) → the identified ski (with
   ``--bootstrap B`` also its bands widened by ``bootstrap_bands(replicates=B)``, as
-  ``skisnow identify --bootstrap B``);
+  ``skisnow identify --bootstrap B``; with ``--discrepancy-bands`` the opt-in bands with the
+  model discrepancy of the fit's own excess, ``identify_ski(discrepancy_bands=True)``);
 * **coverage**: the identified ski paired with the truth, ``skisnow.workflows.same_ski``: a tie?
   (target: 95 % of the rows, the test's level), and the rule before (differences within the
   pointwise combined 95 % band at >= 95 % of the compared stations) on the same pair;
@@ -114,14 +115,14 @@ def old_rule(a, b) -> bool:
 
 
 def run_one(args: tuple) -> dict:
-    name, seed, noise_um, cache, boot = args
+    name, seed, noise_um, cache, boot, disc = args
     from skisnow.identify import identify_ski
     from skisnow.workflows import same_ski
 
     true = true_ski(name)
     bench = bench_of(name, seed, noise_um, Path(cache))
     t0 = time.process_time()
-    res = identify_ski(bench)
+    res = identify_ski(bench, discrepancy_bands=disc)
     cpu = time.process_time() - t0
     if boot:
         from skisnow.identify import bootstrap_bands
@@ -129,6 +130,7 @@ def run_one(args: tuple) -> dict:
         res = bootstrap_bands(res, bench, replicates=boot)
     ident = res.ski
     row = {"ski": name, "seed": seed, "noise_um": noise_um, "bootstrap": boot, "cpu": cpu,
+           "discrepancy_bands": disc,
            "cpu_total": time.process_time() - t0, "exit": 0 if res.converged else 3}  # fmt: skip
     for key, other in (("same", true), ("ei110", stiffer(true)), ("bump50", bumped(true)),
                        ("bump50r", bumped(true, at=-0.40))):  # fmt: skip
@@ -174,8 +176,13 @@ def table(rows: list[dict]) -> None:
         "median T / c (same) | CPU s (median) |"
     )
     print("| --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- | ---: |")
-    keys = sorted({(r["ski"], r["noise_um"], r["bootstrap"]) for r in rows}, key=str)
-    groups = [[r for r in rows if (r["ski"], r["noise_um"], r["bootstrap"]) == k] for k in keys]
+
+    def key(r: dict) -> tuple:
+        bands = f"{r['bootstrap']}" + (" + discrepancy" if r.get("discrepancy_bands") else "")
+        return (r["ski"], r["noise_um"], bands)
+
+    keys = sorted({key(r) for r in rows}, key=str)
+    groups = [[r for r in rows if key(r) == k] for k in keys]
     pooled = {}
     for k, g in zip(keys, groups, strict=True):
         pooled.setdefault((k[1], k[2]), []).extend(g)
@@ -198,6 +205,9 @@ def main() -> None:
     ap.add_argument("--seeds", default="1-6", help="noise seeds a-b")
     ap.add_argument("--noise-um", type=float, default=5.0)
     ap.add_argument("--bootstrap", type=int, default=0)
+    ap.add_argument("--discrepancy-bands", action="store_true",
+                    help="identify_ski(discrepancy_bands=True): the bands with the model "
+                    "discrepancy of the fit's own excess (opt-in)")  # fmt: skip
     ap.add_argument("--jobs", type=int, default=1)
     ap.add_argument("--cache", default=str(Path.home() / ".cache" / "skisnow-identify-bench"))
     ap.add_argument("--out", default=None, help="append every row as a JSON line")
@@ -213,7 +223,8 @@ def main() -> None:
         return
     lo, _, hi = a.seeds.partition("-")
     seeds = range(int(lo), int(hi or lo) + 1)
-    jobs = [(s, k, a.noise_um, a.cache, a.bootstrap) for s in a.skis for k in seeds]
+    jobs = [(s, k, a.noise_um, a.cache, a.bootstrap, a.discrepancy_bands)
+            for s in a.skis for k in seeds]  # fmt: skip
     print(f"load average at start: {os.getloadavg()}", flush=True)
     rows = []
     with ProcessPoolExecutor(max_workers=a.jobs) as ex:
