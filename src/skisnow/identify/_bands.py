@@ -52,9 +52,11 @@ _Z0_SD_CAP = 9.99e-3
 #: Stations of the identified ski: EI every 20 mm, z0 every 5 mm.
 _EI_STEP, _Z0_STEP = 0.02, 0.005
 
-#: The modes kept of the posterior (its square root at the stations, by singular values): those
-#: that carry 99.5 % of its variance, at most this many.
-MAX_MODES = 40
+#: The modes kept of the posterior (its square root at the stations, by singular values of its
+#: correlation form): those that carry 99.5 % of its variance, at most this many (at 40 the
+#: shipped classic's shop bench kept a median 95 % of its EI band, at 60 98 %; the ski file
+#: grows from 0.52 to 0.77 MB).
+MAX_MODES = 60
 
 #: The ``bands`` detail of an identified ski's provenance: which method made its bands and what
 #: they are known to be worth (the default, Laplace, bands under-cover z0; the coverage measured
@@ -318,14 +320,20 @@ def identified_profiles(
     # the prior's width where not determined, capped at the ski file's plausible camber band
     # (10 mm, skisnow._quantities 'camber_sd': a camber is 0-5 mm, so 10 mm says "unknown")
     sd_zz = np.minimum(np.where(det_z, sd_zz, np.maximum(sd_zz, prior_z)), _Z0_SD_CAP)
-    # the posterior's square root at the stations, by singular values
+    # the posterior's square root at the stations, by singular values of its correlation form:
+    # each station's row divided by its own standard deviation first, so that log EI
+    # (dimensionless, ~0.01-0.3) and z0 (metres, ~1e-6-1e-5) count alike — unscaled, the SVD
+    # kept log EI's directions and dropped most of z0's (the modes' z0 spread was a median 0.48
+    # of its band on the shipped classic's shop bench; issue 25, seventh pass)
     rows = np.concatenate([be, tz])
     w, v = np.linalg.eigh(0.5 * (post.covariance + post.covariance.T))
     root = rows @ (v * np.sqrt(np.maximum(w, 0.0)))  # (stations, n_params)
-    u, s, _ = np.linalg.svd(root, full_matrices=False)
+    scale = np.sqrt(np.sum(root**2, axis=1))
+    scale = np.where(scale > 0.0, scale, 1.0)
+    u, s, _ = np.linalg.svd(root / scale[:, None], full_matrices=False)
     share = np.cumsum(s**2) / max(float(np.sum(s**2)), 1e-300)
     k = int(min(MAX_MODES, np.searchsorted(share, 0.995) + 1))
-    modes = (u[:, :k] * s[:k]).T  # (k, stations)
+    modes = (scale[:, None] * (u[:, :k] * s[:k])).T  # (k, stations)
     return Profiles(
         ex=ex, ei=ei, sd_log_ei=sd_e, ei_determined=det_e, cx=cx, z_rest=z_rest, sd_z=sd_zz,
         z_determined=det_z, modes_log_ei=modes[:, : ex.size], modes_z0=modes[:, ex.size :],
