@@ -20,7 +20,6 @@ os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 os.environ.setdefault("OMP_NUM_THREADS", "1")
 
 import argparse
-import pickle
 import sys
 import time
 from pathlib import Path
@@ -29,8 +28,8 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).parent))
 from band_hac_variants import covariance, profiles
-from bench_band_variants import STORE, coverage
-from bench_identify_coverage import _skis, true_ski
+from bench_band_variants import STORE, cached_fits, coverage
+from bench_identify_coverage import _skis
 
 
 def main() -> None:
@@ -49,25 +48,18 @@ def main() -> None:
     print("| ski | noise µm | variant | note | EI in band | z0 in band | EI 2sd % | z0 2sd µm "
           "| z0 rms µm | CPU s |")  # fmt: skip
     print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")
-    for s in skis:
-        true = true_ski(s)
-        for n in a.noise_um:
-            path = Path(a.store) / f"fit_{s}_{a.plan}_{n:g}.pkl"
-            if not path.exists():
-                continue
-            with open(path, "rb") as fh:
-                g = pickle.load(fh)
-            for v in a.variants:
-                t0 = time.process_time()
-                post, note = covariance(g, v)
-                prof = profiles(g, post)
-                cpu = time.process_time() - t0
-                c = coverage(prof, true)
-                c["cpu"] = cpu
-                pooled.setdefault((n, v), []).append(c)
-                print(f"| {s} | {n:g} | {v} | {note} | {c['ei_in']}/{c['ei_n']} | "
-                      f"{c['z0_in']}/{c['z0_n']} | {c['ei_hw']:.1f} | {c['z0_hw']:.1f} | "
-                      f"{c['z0_rms']:.1f} | {cpu:.2f} |", flush=True)  # fmt: skip
+    for s, n, true, g in cached_fits(a.store, skis, a.noise_um, a.plan):
+        for v in a.variants:
+            t0 = time.process_time()
+            post, note = covariance(g, v)
+            prof = profiles(g, post)
+            cpu = time.process_time() - t0
+            c = coverage(prof, true)
+            c["cpu"] = cpu
+            pooled.setdefault((n, v), []).append(c)
+            print(f"| {s} | {n:g} | {v} | {note} | {c['ei_in']}/{c['ei_n']} | "
+                  f"{c['z0_in']}/{c['z0_n']} | {c['ei_hw']:.1f} | {c['z0_hw']:.1f} | "
+                  f"{c['z0_rms']:.1f} | {cpu:.2f} |", flush=True)  # fmt: skip
     print("\n| noise µm | variant | fits | EI in band | z0 in band | median EI 2sd % "
           "| median z0 2sd µm | CPU s median |")  # fmt: skip
     print("| --- | --- | --- | --- | --- | --- | --- | --- |")

@@ -36,6 +36,19 @@ from bench_identify_coverage import _skis, bench_of, true_ski
 STORE = Path.home() / ".cache" / "skisnow-band-variants"
 
 
+def cached_fits(store, skis, noise_um, plan):
+    """``(ski, noise µm, true ski, cached fit)`` for every fit of ``skis`` × ``noise_um`` on
+    ``plan`` in the store (``--fit`` writes them; missing ones are skipped)."""
+    for s in skis:
+        true = true_ski(s)
+        for n in noise_um:
+            path = Path(store) / f"fit_{s}_{plan}_{n:g}.pkl"
+            if not path.exists():
+                continue
+            with open(path, "rb") as fh:
+                yield s, n, true, pickle.load(fh)
+
+
 def fit_one(args: tuple) -> str:
     name, noise_um, cache, store, plan = args
     import skisnow.identify._identify as ident
@@ -113,20 +126,13 @@ def main() -> None:
     print("| ski | noise µm | λ | variant | EI in band | z0 in band | EI 2sd % | z0 2sd µm "
           "| z0 rms µm |")  # fmt: skip
     print("| --- | --- | --- | --- | --- | --- | --- | --- | --- |")
-    for s in skis:
-        true = true_ski(s)
-        for n in a.noise_um:
-            path = Path(a.store) / f"fit_{s}_{a.plan}_{n:g}.pkl"
-            if not path.exists():
-                continue
-            with open(path, "rb") as fh:
-                g = pickle.load(fh)
-            for v in names:
-                c = coverage(profiles_of(g, v), true)
-                pooled.setdefault((n, v), []).append(c)
-                print(f"| {s} | {n:g} | {g['lam']:g} | {v} | {c['ei_in']}/{c['ei_n']} | "
-                      f"{c['z0_in']}/{c['z0_n']} | {c['ei_hw']:.1f} | {c['z0_hw']:.1f} | "
-                      f"{c['z0_rms']:.1f} |", flush=True)  # fmt: skip
+    for s, n, true, g in cached_fits(a.store, skis, a.noise_um, a.plan):
+        for v in names:
+            c = coverage(profiles_of(g, v), true)
+            pooled.setdefault((n, v), []).append(c)
+            print(f"| {s} | {n:g} | {g['lam']:g} | {v} | {c['ei_in']}/{c['ei_n']} | "
+                  f"{c['z0_in']}/{c['z0_n']} | {c['ei_hw']:.1f} | {c['z0_hw']:.1f} | "
+                  f"{c['z0_rms']:.1f} |", flush=True)  # fmt: skip
     print("\n| noise µm | variant | skis | EI in band | z0 in band | median EI 2sd % "
           "| median z0 2sd µm |")  # fmt: skip
     print("| --- | --- | --- | --- | --- | --- | --- |")

@@ -25,28 +25,15 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).parent))
 from bench_band_variants import STORE
-from bench_identify_coverage import bench_of, true_ski
+from bench_identify_coverage import true_ski
+from bench_z0_linear_error import noise_residual
 
-from skisnow.bench import read_bench
-from skisnow.identify._cases import _bench_cases
 from skisnow.identify._model import _design
-
-CACHE = Path.home() / ".cache" / "skisnow-identify-bench"
 
 
 def linear_response(g: dict, name: str, noise_um: float) -> tuple[float, float]:
     sol, pr = g["sol"], g["problem"]
-    noisy = bench_of(name, "shop", noise_um, CACHE)
-    clean = read_bench(CACHE / f"ref_{name}_shop_1mm.csv")
-    lab = noisy.ski_name(None)
-    res = []
-    for k, (rn, rc) in enumerate(zip(_bench_cases(noisy, lab), _bench_cases(clean, lab),
-                                     strict=True)):  # fmt: skip
-        c, x, e = pr.cases[k], rn[2], rn[3] - rc[3]
-        idx = np.abs(x[:, None] - c.x[None, :]).argmin(1)
-        eb = np.bincount(idx, e, c.x.size) / np.maximum(np.bincount(idx, None, c.x.size), 1)
-        res.append(-c.w * pr.bin_weights[k] * eb / pr.sigma_cases[k])
-    r_eps = np.concatenate(res)
+    r_eps = noise_residual(g, name, noise_um)
     a = sol.jac.T @ sol.jac + sol.pen.T @ sol.pen
     dp = -np.linalg.solve(a, sol.jac.T @ r_eps)
     cx = np.linspace(-0.85, 0.85, 171)
