@@ -228,6 +228,19 @@ def test_the_smoothing_bias_term_covers_a_sharp_step() -> None:
     assert 0.93 < inside["bias"][1] / n_all < 0.99
 
 
+_SMOOTH_RMS, _SMOOTH_LENGTH = 0.5, 0.05  # the smooth error: rms (σ units), correlation [m]
+
+
+def _smooth_error_problem(n: int, span: float, k: int):
+    """A linear fit of k cosines (period 3 m) to n bins over ``span`` metres, a weak ridge
+    penalty, and the Cholesky root of a squared-exponential smooth error (Gaussian process)
+    of rms 0.5 σ and correlation length 50 mm at the bins."""
+    x = np.linspace(0.0, span, n)
+    jac = np.stack([np.cos(np.pi * i * x / 1.5) for i in range(k)], axis=1)
+    kern = _SMOOTH_RMS**2 * np.exp(-0.5 * ((x[:, None] - x[None, :]) / _SMOOTH_LENGTH) ** 2)
+    return x, jac, 0.1 * np.eye(k), np.linalg.cholesky(kern + 1e-10 * np.eye(n))
+
+
 def test_a_smooth_model_discrepancy_is_covered_by_its_term() -> None:
     # Data with white noise plus a smooth error (a Gaussian process of rms 0.5 σ, correlation
     # length 50 mm over 1.5 m): the white-noise posterior covers the parameters of a smooth
@@ -235,12 +248,8 @@ def test_a_smooth_model_discrepancy_is_covered_by_its_term() -> None:
     # (Kennedy & O'Hagan 2001, propagated through the linear fit) at its nominal 95 %.
     rng = np.random.default_rng(7)
     n, k = 300, 12
-    x = np.linspace(0.0, 1.5, n)
-    jac = np.stack([np.cos(np.pi * i * x / 1.5) for i in range(k)], axis=1)
-    pen = 0.1 * np.eye(k)
-    rms, length = 0.5, 0.05
-    kern = rms**2 * np.exp(-0.5 * ((x[:, None] - x[None, :]) / length) ** 2)
-    root = np.linalg.cholesky(kern + 1e-10 * np.eye(n))
+    x, jac, pen, root = _smooth_error_problem(n, 1.5, k)
+    rms, length = _SMOOTH_RMS, _SMOOTH_LENGTH
     plain = with_term = 0
     trials = 300
     for _ in range(trials):
@@ -272,12 +281,8 @@ def test_the_discrepancy_of_the_fits_own_excess_covers_the_truth() -> None:
 
     rng = np.random.default_rng(11)
     n, k = 2000, 12
-    x = np.linspace(0.0, 10.0, n)
-    jac = np.stack([np.cos(np.pi * i * x / 1.5) for i in range(k)], axis=1)
-    pen = 0.1 * np.eye(k)
-    rms, length = 0.5, 0.05
-    kern = rms**2 * np.exp(-0.5 * ((x[:, None] - x[None, :]) / length) ** 2)
-    root = np.linalg.cholesky(kern + 1e-10 * np.eye(n))
+    x, jac, pen, root = _smooth_error_problem(n, 10.0, k)
+    length = _SMOOTH_LENGTH
     weights = np.full(n, 2.0)
     dof = restart_bound(jac, pen)[1]
     plain = with_term = 0
