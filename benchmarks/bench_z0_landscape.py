@@ -25,8 +25,7 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).parent))
 from bench_band_variants import STORE
-from bench_identify_coverage import true_ski
-from bench_z0_linear_error import noise_residual
+from bench_z0_linear_error import noise_residual, truth_parameters
 
 from skisnow.identify._model import _design
 
@@ -48,13 +47,7 @@ def linear_response(g: dict, name: str, noise_um: float) -> tuple[float, float]:
 
 def scan(g: dict, name: str) -> list[tuple[float, float, float]]:
     sol, pr, lam = g["sol"], g["problem"], g["lam"]
-    true = true_ski(name)
-    x = np.linspace(pr.nodes[0], pr.nodes[-1], 2000)
-    th_e = np.linalg.lstsq(_design(pr.t_e, x), np.log(true.stiffness(x)), rcond=None)[0]
-    bz = _design(pr.t_z, x) @ pr.q_z
-    lin = np.stack([np.ones_like(x), x], 1)
-    th_z = np.linalg.lstsq(np.hstack([bz, lin]), true.free_camber(x), rcond=None)[0]
-    d = np.concatenate([th_e, th_z[: bz.shape[1]]]) - sol.x
+    d = truth_parameters(pr, name) - sol.x
     p_mat, target = pr.penalty(lam)
 
     def cost(p: np.ndarray) -> float:

@@ -39,6 +39,18 @@ from skisnow.identify._model import _design
 CACHE = Path.home() / ".cache" / "skisnow-identify-bench"
 
 
+def truth_parameters(pr, name: str) -> np.ndarray:
+    """The true ski in the fit's own basis: log EI and z0 (modulo a line, which the bench
+    cannot see) projected by least squares on 2000 points between the fit's outer nodes."""
+    true = true_ski(name)
+    x = np.linspace(pr.nodes[0], pr.nodes[-1], 2000)
+    th_e = np.linalg.lstsq(_design(pr.t_e, x), np.log(true.stiffness(x)), rcond=None)[0]
+    bz = _design(pr.t_z, x) @ pr.q_z
+    lin = np.stack([np.ones_like(x), x], 1)
+    th_z = np.linalg.lstsq(np.hstack([bz, lin]), true.free_camber(x), rcond=None)[0]
+    return np.concatenate([th_e, th_z[: bz.shape[1]]])
+
+
 def noise_residual(g, name, noise_um):
     """The seeded noise as σ-normalised residuals of the fit's bins (r = r_clean + r_ε)."""
     pr = g["problem"]
@@ -71,13 +83,7 @@ def main() -> None:
         with open(Path(a.store) / f"fit_{name}_shop_{float(noise):g}.pkl", "rb") as fh:
             g = pickle.load(fh)
         sol, pr, lam = g["sol"], g["problem"], g["lam"]
-        true = true_ski(name)
-        x = np.linspace(pr.nodes[0], pr.nodes[-1], 2000)
-        th_e = np.linalg.lstsq(_design(pr.t_e, x), np.log(true.stiffness(x)), rcond=None)[0]
-        bz = _design(pr.t_z, x) @ pr.q_z
-        lin = np.stack([np.ones_like(x), x], 1)
-        th_z = np.linalg.lstsq(np.hstack([bz, lin]), true.free_camber(x), rcond=None)[0]
-        p_t = np.concatenate([th_e, th_z[: bz.shape[1]]])
+        p_t = truth_parameters(pr, name)
         r_t, j_t = pr.evaluate(p_t, jacobian=True)
         r_eps = noise_residual(g, name, float(noise))
         r_clean = r_t - r_eps
