@@ -26,11 +26,12 @@ ski identical to the truth under calibrated bands ties with probability ``level`
 number and correlation of the stations.
 
 * **Scale**: s(x) is the skis' combined 95 % band / 2, hypot(sd_a, sd_b), from the ski files'
-  bands. The modes an identified ski carries are the posterior's square root truncated to the
-  directions carrying 99.5 % of its *joint* variance (≤ 40; log EI and z0 together), which keeps
-  only part of the z0 variance (on the shop bench of the shipped classic the modes' z0 sd is a
-  median 0.48 of the band); the bands are the full posterior's, so they set the scale and the
-  modes only the correlation along the ski (what the critical value depends on).
+  bands. The modes an identified ski carries are the posterior's square root truncated (since
+  the seventh pass of issue 25 by singular values of its correlation form, ≤ 60 modes: a median
+  98 % of each band on the shipped classic's shop bench; files written before kept the
+  directions of the raw joint variance, whose z0 sd was a median 0.48 of the band); the bands
+  are the full posterior's, so they set the scale and the modes only the correlation along the
+  ski (what the critical value depends on).
 * **Critical value**: the hypothesis is the Gaussian with the modes' correlation and the bands'
   sd (each mode rescaled per station by band sd / modes' sd); c is the ``level`` quantile of T
   over ``draws`` draws of it (ξ ~ N(0, I) times the modes, standardised per station) at a fixed
