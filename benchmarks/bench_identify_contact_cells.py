@@ -5,11 +5,14 @@ on 30-400 MPa snow").
 Run:  nice -n 10 uv run python benchmarks/bench_identify_contact_cells.py
       [--skis 1001 1002 1003 issue25] [--masses-kg 50 70 90] [--load-position-mm -120]
       [--moduli-mpa 30 100 400] [--samples 200] [--cache DIR] [--out FILE.jsonl]
+      [--plan shop|full] [--noise-um 5] [--diagnose]
 
 The skis: the held-out skis 1001-1003 and issue 25's ski (``bench_identify_coverage.true_ski``),
-their independent reference benches (1 mm finite differences, shop plan: 20-120 kg at -40 and
--120 mm, stations every 10 mm) with 5 µm seeded noise (seed 1), identified with
-``identify_ski``'s defaults; the identified skis are cached (pickled) in ``--cache``.
+their independent reference benches (1 mm finite differences; ``--plan shop``: 20-120 kg at -40
+and -120 mm, stations every 10 mm; ``full``: 39 cases, stations every 2 mm) with ``--noise-um``
+(5) µm seeded noise (seed 1), identified with ``identify_ski``'s defaults; the identified skis
+are cached (pickled) in ``--cache``; their EI rms [%] and z0 rms [µm] as in
+``bench_identify_coverage.errors``.
 
 Each cell (ski × load × modulus): ``solve_case`` (rigid ski, beam route, strip model) through
 the identified ski and through the true ski; per quantity the relative error [%] of length, area
@@ -39,9 +42,10 @@ import json
 import pickle
 import time
 from pathlib import Path
+from types import SimpleNamespace
 
 import numpy as np
-from bench_identify_coverage import bench_of, true_ski
+from bench_identify_coverage import PLANS, bench_of, errors, true_ski
 
 from skisnow.pipeline import sample_intervals, solve_case, zone_topology
 
@@ -51,15 +55,15 @@ QUANT = ("length", "area", "mean_pressure", "load_share")
 TOL_REL, TOL_SHARE = 5.0, 5.0  # %, points
 
 
-def identified(name: str, cache: Path):
-    """The identified ski of ``name``'s shop bench at 5 µm (cached) and its CPU seconds."""
+def identified(name: str, cache: Path, plan: str = "shop", noise_um: float = 5.0):
+    """The identified ski of ``name``'s ``plan`` bench at ``noise_um`` (cached), CPU seconds."""
     from skisnow.identify import identify_ski
 
-    path = cache / f"ident_{name}_shop_5um.pkl"
+    path = cache / f"ident_{name}_{plan}_{noise_um:g}um.pkl"
     if path.exists():
         with open(path, "rb") as fh:
             return pickle.load(fh), 0.0
-    bench = bench_of(name, "shop", 5.0, cache)
+    bench = bench_of(name, plan, noise_um, cache)
     t0 = time.process_time()
     ski = identify_ski(bench).ski
     cpu = time.process_time() - t0
@@ -120,6 +124,8 @@ def main() -> None:
     ap.add_argument("--masses-kg", nargs="+", type=float, default=[50.0, 70.0, 90.0])
     ap.add_argument("--load-position-mm", type=float, default=-120.0)
     ap.add_argument("--moduli-mpa", nargs="+", type=float, default=[30.0, 100.0, 400.0])
+    ap.add_argument("--plan", default="shop", choices=list(PLANS), help="the bench plan")
+    ap.add_argument("--noise-um", type=float, default=5.0, help="the bench's noise [µm]")
     ap.add_argument("--samples", type=int, default=0, help="posterior samples (0: none)")
     ap.add_argument("--cache", default=str(Path.home() / ".cache" / "skisnow-identify-bench"))
     ap.add_argument("--out", default=None, help="append every cell as a JSON line")
@@ -138,8 +144,11 @@ def main() -> None:
     )
     for name in a.skis:
         true = true_ski(name)
-        ident, cpu = identified(name, cache)
-        print(f"# {name}: identification CPU {cpu:.1f} s (0: cached)", flush=True)
+        ident, cpu = identified(name, cache, a.plan, a.noise_um)
+        er = errors(SimpleNamespace(ski=ident), true)
+        print(f"# {name} ({a.plan}, {a.noise_um:g} µm): identification CPU {cpu:.1f} s "
+              f"(0: cached); EI rms {er['ei_rms']:.1f} %, z0 rms {er['z0_rms']:.1f} µm",
+              flush=True)  # fmt: skip
         for m in a.masses_kg:
             for e in a.moduli_mpa:
                 kw = dict(mass=m, load_position=xm, snow_modulus=e * 1e6, profile_source="beam")
