@@ -5,7 +5,7 @@ on 30-400 MPa snow").
 Run:  nice -n 10 uv run python benchmarks/bench_identify_contact_cells.py
       [--skis 1001 1002 1003 issue25] [--masses-kg 50 70 90] [--load-position-mm -120]
       [--moduli-mpa 30 100 400] [--samples 200] [--cache DIR] [--out FILE.jsonl]
-      [--plan shop|full] [--noise-um 5] [--diagnose]
+      [--plan shop|full] [--noise-um 5] [--diagnose] [--sensitivity-um 0.5 1]
 
 The skis: the held-out skis 1001-1003 and issue 25's ski (``bench_identify_coverage.true_ski``),
 their independent reference benches (1 mm finite differences; ``--plan shop``: 20-120 kg at -40
@@ -118,6 +118,28 @@ def diagnose(true, ident, kw: dict, at: dict) -> str:
     return f"idZ0 {out[0]:.1f} % | idEI {out[1]:.1f} % | penetration {pen * 1e6:.1f} µm"
 
 
+def sensitivity(true, kw: dict, amp: float) -> tuple[float, int, int]:
+    """Largest relative change [%] of the regions' and the total's lengths when a Gaussian bump
+    of ±``amp`` [m] (sd 20 mm) is added to the TRUE z0 anywhere from -800 to +800 mm (every
+    20 mm), the topology flips it causes, and the bumps tried."""
+    import dataclasses
+
+    x, z = np.asarray(true.camber_x), np.asarray(true.camber_values)
+    ref = solve_case(true, **kw).zones
+    worst, flips, n = 0.0, 0, 0
+    for centre in np.arange(-0.80, 0.80, 0.02):
+        for sign in (1.0, -1.0):
+            bump = sign * amp * np.exp(-0.5 * ((x - centre) / 0.02) ** 2)
+            s = dataclasses.replace(true, camber_values=tuple(z + bump), camber_sd=None)
+            zz = solve_case(s, **kw).zones
+            n += 1
+            for r in ("rear_glide", "front_glide", "total"):
+                if ref[r].length > 0:
+                    worst = max(worst, 100 * abs(zz[r].length / ref[r].length - 1))
+            flips += zone_topology(zz) != zone_topology(ref)
+    return worst, flips, n
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--skis", nargs="+", default=["1001", "1002", "1003", "issue25"])
@@ -132,7 +154,28 @@ def main() -> None:
     ap.add_argument("--diagnose", action="store_true",
                     help="also the worst region error with the true ski carrying the identified "
                     "z0 or the identified EI, and the true ski's penetration")  # fmt: skip
+    ap.add_argument("--sensitivity-um", nargs="*", type=float, default=[],
+                    help="only: the largest change of the true skis' region lengths "
+                    "under a ±A µm Gaussian bump (sd 20 mm) on z0, per cell")  # fmt: skip
     a = ap.parse_args()
+    if a.sensitivity_um:
+        print(f"load average at start: {os.getloadavg()}")
+        print("ski | kg | MPa | " + " | ".join(f"±{u:g} µm: worst % (flips)"
+                                               for u in a.sensitivity_um))  # fmt: skip
+        for name in a.skis:
+            true = true_ski(name)
+            for m in a.masses_kg:
+                for e in a.moduli_mpa:
+                    kw = dict(mass=m, load_position=a.load_position_mm * 1e-3,
+                              snow_modulus=e * 1e6, profile_source="beam")  # fmt: skip
+                    out = [sensitivity(true, kw, u * 1e-6) for u in a.sensitivity_um]
+                    print(
+                        f"{name} | {m:g} | {e:g} | "
+                        + " | ".join(f"{w:.1f} ({f}/{n})" for w, f, n in out),
+                        flush=True,
+                    )
+        print(f"load average at end: {os.getloadavg()}")
+        return
     cache = Path(a.cache)
     cache.mkdir(parents=True, exist_ok=True)
     print(f"load average at start: {os.getloadavg()}")
