@@ -11,7 +11,8 @@ The skis: the held-out skis 1001-1003 and issue 25's ski (``bench_identify_cover
 their independent reference benches (1 mm finite differences; ``--plan shop``: 20-120 kg at -40
 and -120 mm, stations every 10 mm; ``full``: 39 cases, stations every 2 mm) with ``--noise-um``
 (5) µm seeded noise (seed 1), identified with ``identify_ski``'s defaults; the identified skis
-are cached (pickled) in ``--cache``; their EI rms [%] and z0 rms [µm] as in
+are cached (pickled) in ``--cache``, keyed by ski, plan and noise only — delete
+``ident_*.pkl`` there after a change to the identification; their EI rms [%] and z0 rms [µm] as in
 ``bench_identify_coverage.errors``.
 
 Each cell (ski × load × modulus): ``solve_case`` (rigid ski, beam route, strip model) through
