@@ -19,6 +19,7 @@ most half the paper-plan interpolation's, near-contact mean < 2 µm.
 from __future__ import annotations
 
 import argparse
+import json
 import os
 import time
 from pathlib import Path
@@ -169,6 +170,14 @@ BENCHES = {
     "paper plan 5 kg × 40 mm": (DEFAULT_MASSES, DEFAULT_LOAD_POSITIONS),
     "dense 1 kg × 13.3 mm": (TRAINING_MASSES, TRAINING_POSITIONS),
 }
+
+
+def log_record(record: dict, path: str | Path) -> None:
+    """Print a run's record as one JSON line and append it to the log file ``path``."""
+    line = json.dumps(record)
+    print(line, flush=True)
+    with open(path, "a") as f:
+        f.write(line + "\n")
 
 
 def _training_bench(meta, hashes: dict[str, str]) -> str | None:

@@ -15,7 +15,6 @@ Appends the line to ``--log`` (default ``benchmarks/network_diagnosis.jsonl``).
 from __future__ import annotations
 
 import argparse
-import json
 import os
 import time
 from pathlib import Path
@@ -26,6 +25,7 @@ from bench_network import (
     TRAINING_POSITIONS,
     bench_cube,
     interpolate_cases,
+    log_record,
     offgrid_cases,
 )
 
@@ -151,10 +151,7 @@ def main() -> None:
             }
         )
     record["load"] = [round(v, 2) for v in (*load0, *os.getloadavg())]
-    line = json.dumps(record)
-    print(line)
-    with open(args.log, "a") as f:
-        f.write(line + "\n")
+    log_record(record, args.log)
 
 
 if __name__ == "__main__":

@@ -32,6 +32,7 @@ from bench_network import (
     TRAINING_POSITIONS,
     bench_cube,
     interpolate_cases,
+    log_record,
     offgrid_cases,
 )
 
@@ -184,10 +185,7 @@ def main() -> None:
         )
         Path(args.save).mkdir(parents=True, exist_ok=True)
         save_network(out, Path(args.save) / args.ski)
-    line = json.dumps(record)
-    print(line)
-    with open(args.log, "a") as f:
-        f.write(line + "\n")
+    log_record(record, args.log)
 
 
 if __name__ == "__main__":
