@@ -83,13 +83,20 @@ class _Case:
     average: Any = None
 
 
+def _bin_index(x: NDArray[np.float64], width: float) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
+    """Each station's bin (``width`` wide, in order along the ski) and each bin's station count:
+    the one grouping of :func:`_bins` (the data) and :func:`_bin_average` (the model)."""
+    key = np.floor(x / width + 1e-9).astype(np.int64)
+    _, inv, counts = np.unique(key, return_inverse=True, return_counts=True)
+    return inv, counts
+
+
 def _bins(x: NDArray[np.float64], h: NDArray[np.float64], width: float):
     """Bin means (x̄, h̄, count) and the scatter about a straight line inside each bin (the
     profile's slope removed): sum of squares and degrees of freedom (count - 2 per bin of >= 3
     samples). The profile's curvature is not removed: near the shovel it bends h by µm across a
     bin, so the model is compared as the same bin mean (:func:`_bin_average`), not at x̄."""
-    key = np.floor(x / width + 1e-9).astype(np.int64)
-    _, inv, counts = np.unique(key, return_inverse=True, return_counts=True)
+    inv, counts = _bin_index(x, width)
     xs = np.bincount(inv, weights=x) / counts
     hs = np.bincount(inv, weights=h) / counts
     dx, dh = x - xs[inv], h - hs[inv]
@@ -109,8 +116,7 @@ def _bin_average(x: NDArray[np.float64], width: float) -> Any:
     model at the bin's mean position x̄ instead differs from it by h''·var(x)/2, measured 2.0 µm
     rms (9 µm at the tip) over the full plan of issue 25's ski (2 mm stations, 5 mm bins, 2 or 3
     stations each): the two-bin pattern of the full plan's residuals."""
-    key = np.floor(x / width + 1e-9).astype(np.int64)
-    _, inv, counts = np.unique(key, return_inverse=True, return_counts=True)
+    inv, counts = _bin_index(x, width)
     return csr_matrix((1.0 / counts[inv], (inv, np.arange(x.size))), shape=(counts.size, x.size))
 
 
