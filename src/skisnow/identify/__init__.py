@@ -8,7 +8,8 @@ Levenberg–Marquardt, λ by generalised cross-validation and Gauss–Newton ban
 :func:`bootstrap_bands` (the method: the docstring of
 :mod:`skisnow.identify._identify`); and the uncertainty of an identification predicted for a
 bench plan before measuring (Fisher information, Cramér–Rao):
-:func:`predict_identification_uncertainty` → :class:`BenchPlanPrediction`.
+:func:`predict_identification_uncertainty` → :class:`BenchPlanPrediction`; an opt-in population
+prior of the fit (:func:`population_prior` → :class:`PopulationPrior`, ``identify_ski(prior=...)``).
 
 May import: ski, bench
 """
@@ -24,13 +25,16 @@ from skisnow.identify._bootstrap import (
     widen_bands,
 )
 from skisnow.identify._identify import IdentificationResult, identify_ski
+from skisnow.identify._prior import PopulationPrior, population_prior
 
 __all__ = [
     "BenchPlanPrediction",
     "IdentificationResult",
+    "PopulationPrior",
     "Replicates",
     "bootstrap_bands",
     "identify_ski",
+    "population_prior",
     "predict_identification_uncertainty",
     "replicate_scale",
     "run_replicates",

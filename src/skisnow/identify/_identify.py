@@ -58,8 +58,9 @@ from skisnow.identify._fit import fit_bench
 from skisnow.identify._mesh_error import mesh_error
 from skisnow.identify._model import _Problem
 from skisnow.identify._noise import estimate_noise
+from skisnow.identify._prior import PopulationPrior
 from skisnow.identify._resolution import refine_resolution
-from skisnow.identify._result import DEFAULT_LAMBDAS, IdentificationResult
+from skisnow.identify._result import DEFAULT_LAMBDAS, IdentificationResult, _span, _version
 from skisnow.identify._robust import robust_refit
 from skisnow.ski import DEFAULT_BOOT_LENGTH, Provenance, Ski
 
@@ -114,6 +115,7 @@ def identify_ski(
     discrepancy_bands: bool = False,
     stiffness_penalty: str = "quadratic",
     edge_scale: float = EDGE_SCALE,
+    prior: PopulationPrior | None = None,
     progress: Callable[[str], None] | None = None,
     source: str = "",
 ) -> IdentificationResult:
@@ -195,6 +197,11 @@ def identify_ski(
         reweighting from the quadratic fit at its λ; ``'huber-gcv'`` chooses λ again by GCV at
         each reweighting; :mod:`skisnow.identify._edges`). An option: on the calibration skis
         it did not lower the EI error (docs/validation/identification-uncertainty.md).
+    prior
+        An opt-in population prior (:func:`~skisnow.identify.population_prior`) in place of
+        the smoothness penalty and its λ: the fit is then the Bayes-linear estimate under that
+        population, only as good as the population is like the ski (a modelling choice; its
+        provenance is recorded; docs/validation/identification-uncertainty.md, eighth pass).
     progress
         Called with a short message after each stage.
     source
@@ -236,6 +243,8 @@ def identify_ski(
         )
     if not (np.isfinite(edge_scale) and edge_scale > 0):
         raise InputError(f"edge_scale must be > 0, got {edge_scale}")
+    if prior is not None and (stiffness_penalty != "quadratic" or regularisation is not None):
+        raise InputError("prior replaces the smoothness penalty: no regularisation or edges")
     if criterion not in ("gcv", "evidence", "case-cv"):
         raise InputError(f"criterion must be 'gcv', 'evidence' or 'case-cv', got {criterion!r}")
     if n_camber is None:
@@ -277,10 +286,10 @@ def identify_ski(
         if not (np.isfinite(noise) and noise > 0):
             raise InputError(f"noise must be > 0 m, got {noise}")
         sigma_cases = np.full(len(cases), float(noise))
-    problem = _Problem(cases, nodes, n_stiffness, n_camber, sigma_cases)
+    problem = _Problem(cases, nodes, n_stiffness, n_camber, sigma_cases, prior)
     options = dict(
-        regularisation=regularisation, lambdas=lambdas, max_nfev=max_nfev,
-        continuation=continuation, say=say, criterion=criterion,
+        regularisation=1.0 if prior is not None else regularisation, lambdas=lambdas,
+        max_nfev=max_nfev, continuation=continuation, say=say, criterion=criterion,
     )  # fmt: skip
     try:
         fitted = fit_bench(problem, cases, nodes, initial=initial, **options)
@@ -373,6 +382,7 @@ def identify_ski(
         kz = None if kz_mm is None else (float(kz_mm[0]) * 1e-3, float(kz_mm[1]) * 1e-3)
     kind_ = kind or md.get("kind") or ("classic" if kz is not None else "skate")
     bias_note = ", smoothing bias" if smooth_bias is not None else ""
+    how = "prior" if prior is not None else "given" if regularisation is not None else criterion
     span_e = _span(prof.ex, prof.ei_determined)
     span_z = _span(prof.cx, prof.z_determined)
     identified = Ski(
@@ -420,8 +430,8 @@ def identify_ski(
             software=f"skisnow {_version()}",
             details=(
                 ("lambda", lam),
-                ("criterion", "given" if regularisation is not None else criterion),
-                ("stiffness_penalty", stiffness_penalty),
+                ("criterion", how),
+                ("stiffness_penalty", stiffness_penalty if prior is None else prior.description),
                 ("n_stiffness", n_stiffness),
                 ("n_camber", problem.n_z),
                 ("noise_mm", problem.sigma * 1e3),
@@ -458,7 +468,7 @@ def identify_ski(
     return IdentificationResult(
         ski=identified,
         regularisation=lam,
-        criterion="given" if regularisation is not None else criterion,
+        criterion=how,
         gcv=tuple(fitted.records),
         noise=problem.sigma,
         residual_rms=rms,
@@ -484,15 +494,3 @@ def identify_ski(
         causes=diag.causes,
         model_error=(diag.delta * height_scale, diag.delta),
     )
-
-
-def _span(x: np.ndarray, flags: np.ndarray) -> str:
-    """The determined stations as ``'a..b'`` mm (first to last), or ``'none'``."""
-    idx = np.flatnonzero(flags)
-    return "none" if idx.size == 0 else f"{x[idx[0]] * 1e3:.0f}..{x[idx[-1]] * 1e3:.0f}"
-
-
-def _version() -> str:
-    from skisnow import __version__
-
-    return __version__

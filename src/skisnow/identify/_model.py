@@ -201,6 +201,7 @@ class _Problem:
         n_stiffness: int,
         n_camber: int,
         sigma: float | Sequence[float],
+        prior: Any = None,
     ) -> None:
         self.cases = cases
         self.nodes = nodes
@@ -279,6 +280,10 @@ class _Problem:
         self.last_state: list[tuple[NDArray[np.float64], float, float] | None] = [None] * len(cases)
         self.n_data = int(sum(c.x.size for c in cases))
         self._beam_cache: list[tuple[bytes, _Beam]] = []
+        #: an opt-in prior replacing the penalty (``rows(problem) -> (P, t)``, λ unused;
+        #: :class:`skisnow.identify._prior.PopulationPrior`), and its rows on this basis
+        self.prior = prior
+        self.prior_rows = None if prior is None else prior.rows(self)
 
     def set_bin_weights(self, flat: NDArray[np.float64]) -> None:
         """Set the square roots of the bins' weights from one array over all bins."""
@@ -443,7 +448,10 @@ class _Problem:
         (λ₁ = 1) fixes the log-EI trend where
         the bench carries no bending moment (the free overhangs): there the data leave log EI
         undetermined, and without it a Gauss–Newton step runs off along that null direction.
-        Read as a Gaussian prior (Wahba 1978), PᵀP is its precision (σ-normalised)."""
+        Read as a Gaussian prior (Wahba 1978), PᵀP is its precision (σ-normalised). With an
+        opt-in prior (``prior``), its rows instead."""
+        if self.prior_rows is not None:
+            return self.prior_rows[0]
         zeros_z = np.zeros((self.n_e, self.n_z - 2))
         rows_e = np.sqrt(lam) * np.concatenate(
             [self.stiffness_weights[:, None] * self.d2_e, np.zeros((self.n_e - 2, self.n_z - 2))],
@@ -466,6 +474,8 @@ class _Problem:
 
     def penalty_target(self, lam: float, lam_z: float = _LAMBDA_Z) -> NDArray[np.float64]:
         """t of the penalty residual P p - t: the prior mean of log EI on its ridge rows."""
+        if self.prior_rows is not None:
+            return self.prior_rows[1]
         t = np.zeros(self.penalty_matrix(lam, lam_z).shape[0])
         start = (self.n_e - 2) + (self.n_e - 1)
         t[start : start + self.n_e] = PRIOR_LOG_EI_MEAN / PRIOR_LOG_EI_SD

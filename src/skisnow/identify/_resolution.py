@@ -104,7 +104,7 @@ def refine_resolution(
         chi2_fit, bound = float(fitted.solution.fun @ fitted.solution.fun), fitted.chi2_bound
         if chi2_fit <= bound:
             break
-        fine = _Problem(cases, nodes, n_stiffness, 2 * problem.n_z - 3, sigma)
+        fine = _Problem(cases, nodes, n_stiffness, 2 * problem.n_z - 3, sigma, problem.prior)
         say(
             f"χ² {chi2_fit:.0f} above the noise (discrepancy bound {bound:.0f}): z0 on "
             f"{fine.n_z} coefficients"

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+import numpy as np
+
 from skisnow.ski import Ski
 
 __all__ = ["DEFAULT_LAMBDAS", "IdentificationResult"]
@@ -25,7 +27,8 @@ class IdentificationResult:
         width where the bench does not determine them), which stations the bench determines
         (``stiffness_determined``/``camber_determined``), the posterior's modes, provenance.
     regularisation, criterion
-        The chosen λ and how (``'gcv'``, ``'evidence'`` or ``'given'``).
+        The chosen λ and how (``'gcv'``, ``'evidence'``, ``'case-cv'``, ``'given'``, or
+        ``'prior'``: an opt-in population prior in place of the penalty, λ unused).
     gcv
         ``((λ, score, misfit rms / σ, effective degrees of freedom), ...)`` of the search (score:
         the GCV, or minus the log evidence with ``criterion="evidence"``; the lowest chosen).
@@ -113,3 +116,15 @@ class IdentificationResult:
         """Whether the fit explains the bench down to its noise (χ² within its noise-only
         bound, without the allowance for a stated model error)."""
         return bool(self.n_bins and self.misfit**2 * self.n_bins <= self.chi2_bound)
+
+
+def _span(x: np.ndarray, flags: np.ndarray) -> str:
+    """The determined stations as ``'a..b'`` mm (first to last), or ``'none'``."""
+    idx = np.flatnonzero(flags)
+    return "none" if idx.size == 0 else f"{x[idx[0]] * 1e3:.0f}..{x[idx[-1]] * 1e3:.0f}"
+
+
+def _version() -> str:
+    from skisnow import __version__
+
+    return __version__
