@@ -105,11 +105,18 @@ def box(profile: str) -> tuple[np.ndarray, np.ndarray]:
     return np.array(lo), np.array(hi)
 
 
+#: ``--monotone``: the node values are log10 of the height's increments from node to node (the
+#: shape rises away from its reference point on both sides: one contact per zone).
+MONOTONE = {"on": False}
+
+
 def zone_shape(x: np.ndarray, centre: float, log_h: np.ndarray) -> np.ndarray:
     """Heights [m] of one zone shape at ``x`` (inf beyond 0.25 m of its centre)."""
     k = len(ZONE_U)
     hb = 10.0 ** log_h[:k] * 1e-6  # behind, nearest first
     hf = 10.0 ** log_h[k:] * 1e-6
+    if MONOTONE["on"]:
+        hb, hf = np.cumsum(hb), np.cumsum(hf)
     u = np.concatenate([[-0.25], -np.array(ZONE_U)[::-1], [0.0], ZONE_U, [0.25]])
     h = np.concatenate([[hb[-1] + 2e-3], hb[::-1], [0.0], hf, [hf[-1] + 2e-3]])
     du = x - centre
@@ -153,7 +160,13 @@ def start_vector(profile: str, x: np.ndarray, h: np.ndarray) -> np.ndarray:
         ref = float(np.interp(c, x, rel))
         hb = [np.interp(c - u, x, rel) - ref for u in ZONE_U]
         hf_ = [np.interp(c + u, x, rel) - ref for u in ZONE_U]
-        vals = np.clip(np.array(hb + hf_) * 1e6, 10 ** LOG_H[0], 10 ** LOG_H[1])
+        vals = np.array(hb + hf_) * 1e6
+        if MONOTONE["on"]:  # the increments of the rising envelope on each side
+            k = len(ZONE_U)
+            env = [np.maximum.accumulate(np.maximum(vals[:k], 0.0)),
+                   np.maximum.accumulate(np.maximum(vals[k:], 0.0))]  # fmt: skip
+            vals = np.concatenate([np.diff(e, prepend=0.0) for e in env])
+        vals = np.clip(vals, 10 ** LOG_H[0], 10 ** LOG_H[1])
         w += [c, *np.log10(vals)]
     if "middle" in zones:
         w.append(float(np.clip(np.interp(cs["middle"], x, rel) * 1e6, *D_MID)))
@@ -200,11 +213,13 @@ def main() -> None:
     ap.add_argument("--minutes", type=float, default=8.0)
     ap.add_argument("--powell-minutes", type=float, default=3.0)
     ap.add_argument("--cap", type=float, default=math.inf)
+    ap.add_argument("--monotone", action="store_true", help="one contact per zone (MONOTONE)")
     ap.add_argument("--stay", type=float, default=0.0, help="weight of stay() (0: off)")
     ap.add_argument("--log", type=Path, required=True)
     ap.add_argument("--out", type=Path)
     a = ap.parse_args()
     prof = a.profile
+    MONOTONE["on"] = a.monotone
     ski = get_ski("classic-k22")
     if a.kick_zone:
         ski = replace(ski, kick_zone=(a.kick_zone[0] * 1e-3, a.kick_zone[1] * 1e-3))
@@ -291,6 +306,7 @@ def main() -> None:
         doc = {
             "profile": prof, "mass_kg": m, "load_position_mm": xm * 1e3,
             "kick_zone_mm": [k * 1e3 for k in ski.kick_zone], "zone_u_m": list(ZONE_U),
+            "monotone": a.monotone,
             "objective": state["best"], "stay": a.stay, "distance": stay(prof, w, w_ship),
             "penalty": penalty(*errors(rows), cap=a.cap), "zones_within": zones, "of": len(rows),
             "numbers_within": n_ok, "numbers": n, "vector": [float(v) for v in w],
