@@ -257,7 +257,12 @@ def tally(rows: list) -> tuple[int, int, int]:
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--ski", choices=("skate", "classic"), required=True)
-    ap.add_argument("--knots", choices=("default", "dense"), default="default")
+    ap.add_argument(
+        "--knots",
+        choices=("default", "dense", "record"),
+        default="default",
+        help="record: the knots of the first --start (e.g. ski_from_profiles.py's)",
+    )
     ap.add_argument(
         "--param",
         choices=("knots", "features"),
@@ -299,6 +304,12 @@ def main() -> None:
             ap.error("--start: at least one calibration record (with --param knots)")
         if a.knots == "dense":
             KNOTS.update(DENSE_KNOTS)
+        elif a.knots == "record":  # the first start's knots, the default knots' two pins
+            doc = json.loads(Path(a.start[0]).read_text())
+            ek, zk = doc["ei_knots_m"], doc["camber_knots_m"]
+            _, dz, dpins = SPLINE_KNOTS[kind]
+            pins = tuple(int(np.argmin(np.abs(np.array(zk) - dz[p]))) for p in dpins)
+            KNOTS[kind] = (tuple(ek), tuple(zk), pins)
         starts = [record_vector(kind, json.loads(Path(s).read_text())) for s in a.start]
         lo, hi = bounds(kind)
         lo = np.minimum(lo, np.min(starts, axis=0))

@@ -232,6 +232,21 @@ def test_the_reproduction_skis_are_written_from_their_records(kind: str, tmp_pat
     assert any("Breitschädel stiffness k" in d for d in departures)
 
 
+def test_a_reproduction_record_states_its_own_chain_of_fits(tmp_path: Path) -> None:
+    """A record with a ``method`` (a ski made by more than one fit, e.g. profiles first, then
+    Powell) has that method in its provenance; without it, the one fit the record names."""
+    doc = json.loads(
+        (ROOT / "benchmarks" / "calibration" / "calibration_skate_k22_v4.json").read_text()
+    )
+    plain = read_ski(cs.write_shipped(doc, tmp_path / "plain.json"))
+    assert "benchmarks/fit_k22.py: differential evolution, then Powell" in (plain.provenance.method)
+    chain = "least squares to designed profiles, then Powell"
+    stated = read_ski(cs.write_shipped(doc | {"method": chain}, tmp_path / "stated.json"))
+    assert f"alone ({chain})" in stated.provenance.method
+    assert "differential evolution" not in stated.provenance.method
+    assert stated.camber_values == plain.camber_values
+
+
 def test_the_command_refuses_bad_options(capsys: pytest.CaptureFixture[str]) -> None:
     assert main(["calibrate", "--ski", "alpine"]) == 2
     assert "--ski must be classic or skate" in capsys.readouterr().err

@@ -300,8 +300,10 @@ def _write_reproduction(doc: dict, path: Path) -> Path:
         method="calibrated: reproduction ski, a spline ski fitted to the captions of "
         "Kalliorinne et al. (2023), Figs. 4-7, alone ("
         + (
-            f"{doc['fit']}: differential evolution, then Powell, on the tolerances as a hinge "
-            f"penalty, margin {doc.get('margin')}"
+            str(doc["method"])  # a record that states its own chain of fits
+            if doc.get("method")
+            else f"{doc['fit']}: differential evolution, then Powell, on the tolerances as a "
+            f"hinge penalty, margin {doc.get('margin')}"
             if doc.get("fit")
             else "skisnow calibrate --reproduction: differential evolution, then least squares"
         )
