@@ -237,7 +237,7 @@ def main() -> None:
         "tolerances": {"length": TOL.length, "pressure": TOL.pressure, "share": TOL.share,
                        "implied_shares": TOL.implied_shares},
         "fit": "benchmarks/ski_from_profiles.py", "profiles": [str(p) for p in a.profiles],
-        "start": str(a.start), "sigma_um": a.sigma_um, "near_um": a.near_um, "smooth": a.smooth,
+        "start": str(a.start), "seed": None, "sigma_um": a.sigma_um, "near_um": a.near_um, "smooth": a.smooth,
         "profile_cost": float(sol.cost), "profile_misfit": table, "penalty": pen,
         "margin": MARGIN, "evaluations": int(sol.nfev),
         "cpu_seconds": round(time.process_time() - t0, 1),
