@@ -46,12 +46,18 @@ Fifth pass, two more parametrisations (docs/validation/paper-reproduction.md):
           --start benchmarks/calibration/calibration_skate_k22_v4.json --bump 0.54 0.015 25 \
           --sigma 0.03 --popsize 5 --minutes 12 --powell-minutes 4 --seed 61 \
           --log benchmarks/calibration/fit_k22_skate_bump.jsonl --tag _v5
+
+Sixth pass: ``--ei-bump CENTRE HALF DEPTH`` (with the knots, alone or with ``--bump``): a cos²
+dip (DEPTH < 0) or rise of log EI (centre [m], half-width [m], depth [ln N m²],
+:data:`EI_BUMP_BOUNDS`) optimised with the knot values; the ski then carries EI on the 10 mm
+grid of :func:`feature_knots` (``benchmarks/scan_k22_front.py`` scans it on a fixed ski).
 """
 
 from __future__ import annotations
 
 import argparse
 import contextlib
+import dataclasses
 import json
 import math
 import time
@@ -210,13 +216,49 @@ def bump_vector(kind: str, base: tuple, w: np.ndarray) -> np.ndarray:
     return np.concatenate([w[:n_e], zg[free]])
 
 
+#: ``--ei-bump``: a cos² dip or rise of log EI (centre [m], half-width [m], depth [ln N m²]:
+#: EI times e^depth at the centre), optimised with the knots; EI then on the 10 mm grid.
+EI_BUMP_BOUNDS = ((0.30, 0.75), (0.01, 0.12), (-3.5, 3.5))
+
+
+def ei_bump_log(kind: str, ek: tuple, log_ei: np.ndarray, w3: np.ndarray) -> np.ndarray:
+    """log EI on the 10 mm grid of :func:`feature_knots`: the PCHIP of ``log_ei`` at the knots
+    ``ek`` plus ``depth`` cos²(π/2 (x − centre)/half) within ``half`` of ``centre``."""
+    gk = np.array(feature_knots(kind)[0])
+    xd, half, depth = w3
+    t = np.clip((gk - xd) / half, -1.0, 1.0)
+    return PchipInterpolator(np.array(ek), log_ei)(gk) + depth * np.cos(0.5 * np.pi * t) ** 2
+
+
+#: ``--min-patch-frac F`` (sixth pass): a zone holding a patch shorter than F of the zone's
+#: length (a sliver of a station or two at the edge of contact, not the paper's second patch)
+#: has a wrong patch count wherever the paper states one (its count is set to -1: two wrong
+#: patches in :func:`errors`), so a sliver neither meets nor escapes a count; 0 (the default):
+#: every patch counts, as ``skisnow captions`` counts them.
+MIN_PATCH_FRAC = 0.0
+
+
+def counted(zones):  # type: ignore[no-untyped-def]
+    """``zones`` with the patch count of each zone holding a sliver (:data:`MIN_PATCH_FRAC`)
+    set to -1."""
+    if MIN_PATCH_FRAC <= 0.0:
+        return zones
+    new = {}
+    for name in ("rear", "middle", "front"):
+        z = zones[name]
+        if z.patches > 1 and any(b - a < MIN_PATCH_FRAC * z.length for a, b in z.intervals):
+            new[name] = dataclasses.replace(z, patches=-1)
+    return dataclasses.replace(zones, **new) if new else zones
+
+
 def rows_of(kind: str, v: np.ndarray) -> list:
     """The caption rows (beam route) of the ski of parameter vector ``v``."""
     ski = make_ski(kind, v)
     rows = []
     for case in CAPTIONS:
         if case.ski == kind:
-            rows.extend(compare_case(case, solve_caption_case(case, ski), tolerances=TOL))
+            zones = counted(solve_caption_case(case, ski))
+            rows.extend(compare_case(case, zones, tolerances=TOL))
     return rows
 
 
@@ -282,6 +324,19 @@ def main() -> None:
         metavar=("CENTRE_M", "HALF_M", "HEIGHT_UM"),
         help="with --param knots: optimise a cos² bump on z0 too, from this start",
     )
+    ap.add_argument(
+        "--ei-bump",
+        type=float,
+        nargs=3,
+        metavar=("CENTRE_M", "HALF_M", "DEPTH_LN"),
+        help="with --param knots: optimise a cos² dip/rise of log EI too, from this start",
+    )
+    ap.add_argument(
+        "--min-patch-frac",
+        type=float,
+        default=0.0,
+        help="a patch under this fraction of its zone makes the zone's count wrong (sixth pass)",
+    )
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--popsize", type=int, default=6)
     ap.add_argument("--sigma", type=float, default=0.03, help="start cloud, fraction of box")
@@ -292,6 +347,8 @@ def main() -> None:
     ap.add_argument("--out", type=Path, default=Path("benchmarks/calibration"))
     ap.add_argument("--tag", default="_v2")
     a = ap.parse_args()
+    global MIN_PATCH_FRAC
+    MIN_PATCH_FRAC = a.min_patch_frac
     kind = a.ski
     feats = a.param == "features"
     if feats:  # the grids of the features; a start is a feature file, none: the whole box
@@ -324,6 +381,18 @@ def main() -> None:
             lo = np.concatenate([lo, [b[0] for b in BUMP_BOUNDS]])
             hi = np.concatenate([hi, [b[1] for b in BUMP_BOUNDS]])
             to_v = lambda w: bump_vector(kind, base, w)  # noqa: E731
+        if a.ei_bump:  # EI on the 10 mm grid; the knot (and z0 bump) values before the dip
+            ek0, n_e0 = KNOTS[kind][0], len(KNOTS[kind][0])
+            KNOTS[kind] = (feature_knots(kind)[0], *KNOTS[kind][1:])
+            starts = [np.concatenate([v, a.ei_bump]) for v in starts]
+            lo = np.concatenate([lo, [b[0] for b in EI_BUMP_BOUNDS]])
+            hi = np.concatenate([hi, [b[1] for b in EI_BUMP_BOUNDS]])
+            inner = to_v
+
+            def to_v(w: np.ndarray) -> np.ndarray:
+                log_ei = ei_bump_log(kind, ek0, w[:n_e0], w[-3:])
+                return np.concatenate([log_ei, inner(w[:-3])[n_e0:]])
+
     state = {"n": 0, "best": math.inf, "v": starts[0]}
     t0 = time.process_time()
     w0 = time.monotonic()
@@ -394,19 +463,24 @@ def main() -> None:
     doc = report(kind, v, opts)
     doc |= {
         "reproduction": True, "plausibility_terms": False,
-        "knots": "features" if feats else a.knots + ("+bump, camber on 5 mm" if a.bump else ""),
+        "knots": "features" if feats else a.knots + ("+bump, camber on 5 mm" if a.bump else "")
+                 + ("+EI dip, EI on 10 mm" if a.ei_bump else ""),
         "tolerances": {"length": TOL.length, "pressure": TOL.pressure, "share": TOL.share,
                        "implied_shares": TOL.implied_shares},
         "fit": "benchmarks/fit_k22.py", "penalty": state["best"], "margin": MARGIN,
-        "cap": a.cap if math.isfinite(a.cap) else None,
+        "cap": a.cap if math.isfinite(a.cap) else None, "min_patch_frac": a.min_patch_frac,
         "starts": a.start, "seed": a.seed, "popsize": a.popsize, "sigma": a.sigma,
         "evaluations": state["n"], "generations_run": state.get("generations", 0),
         "generations": state.get("generations", 0),
         "cpu_seconds": round(time.process_time() - t0, 1),
     }  # fmt: skip
     if a.bump:
+        at = slice(-6, -3) if a.ei_bump else slice(-3, None)
         doc["bump"] = dict(zip(("centre_m", "half_width_m", "height_um"),
-                               map(float, state["w"][-3:]), strict=True))  # fmt: skip
+                               map(float, state["w"][at]), strict=True))  # fmt: skip
+    if a.ei_bump:
+        doc["ei_bump"] = dict(zip(("centre_m", "half_width_m", "depth_ln"),
+                                  map(float, state["w"][-3:]), strict=True))  # fmt: skip
     if feats:
         doc["parametrisation"] = {
             "name": "features", "fit": "benchmarks/fit_k22.py --param features",
