@@ -122,6 +122,77 @@ def test_a_bump_of_zero_height_is_the_knot_ski_and_a_bump_lifts_z0_by_its_height
     assert np.max(np.abs(bumped.free_camber(x[far]) - flat.free_camber(x[far]))) < 1e-12
 
 
+def test_an_ei_dip_of_zero_depth_is_the_knot_ski_and_a_dip_scales_ei_by_e_to_its_depth() -> None:
+    """--ei-bump (sixth pass): log EI on the 10 mm grid through the knots is the knot ski's EI
+    (every knot on the grid, PCHIP between them), and the same captions; a dip multiplies EI by
+    e^depth at its centre and leaves it unchanged beyond its half-width."""
+    from skisnow.calibrate import make_ski, record_vector
+    from skisnow.calibrate._params import KNOTS
+
+    mod = _script()
+    doc = json.loads((ROOT / "benchmarks/calibration/calibration_skate_k22_v4.json").read_text())
+    base = KNOTS["skate"]
+    v = record_vector("skate", doc)
+    n_e = len(base[0])
+    plain = make_ski("skate", v)
+    ek = mod.feature_knots("skate")[0]
+    flat_log = mod.ei_bump_log("skate", base[0], v[:n_e], np.array([0.55, 0.03, 0.0]))
+    dip_log = mod.ei_bump_log("skate", base[0], v[:n_e], np.array([0.55, 0.03, -2.0]))
+    KNOTS["skate"] = (ek, *base[1:])
+    try:
+        flat = make_ski("skate", np.r_[flat_log, v[n_e:]])
+        dip = make_ski("skate", np.r_[dip_log, v[n_e:]])
+        rows_flat = mod.rows_of("skate", np.r_[flat_log, v[n_e:]])
+    finally:
+        KNOTS["skate"] = base
+    rows_plain = mod.rows_of("skate", v)
+    x = np.array(ek)
+    assert flat.stiffness(np.array(base[0])) == pytest.approx(plain.stiffness(np.array(base[0])))
+    assert flat.stiffness(x) == pytest.approx(plain.stiffness(x), rel=1e-9)
+    assert [r.patches for r in rows_flat] == [r.patches for r in rows_plain]
+    assert [r.length for r in rows_flat] == pytest.approx([r.length for r in rows_plain], rel=0.01)
+    assert dip.stiffness(0.55) / flat.stiffness(0.55) == pytest.approx(np.exp(-2.0), rel=1e-9)
+    far = np.abs(x - 0.55) > 0.03 + 1e-9
+    assert dip.stiffness(x[far]) == pytest.approx(flat.stiffness(x[far]), rel=1e-12)
+    assert np.all(dip.stiffness(x[~far]) <= flat.stiffness(x[~far]) * (1 + 1e-12))
+
+
+def test_a_sliver_patch_makes_a_zone_count_wrong_with_min_patch_frac() -> None:
+    """--min-patch-frac: a front zone of a long patch and a 1-2 mm sliver (the v4 ski with a
+    4 µm protrusion at +0.62 m, 60 kg on 100 MPa) is two patches as ``skisnow captions``
+    counts them, a wrong count (-1) with the option, and a zone without a sliver keeps its
+    count."""
+    from skisnow.calibrate import make_ski, record_vector
+    from skisnow.calibrate._params import KNOTS
+    from skisnow.paper import CAPTIONS, solve_caption_case
+
+    mod = _script()
+    doc = json.loads((ROOT / "benchmarks/calibration/calibration_skate_k22_v4.json").read_text())
+    base = KNOTS["skate"]
+    v = record_vector("skate", doc)
+    gk = mod.feature_knots("skate")[1]
+    pins = tuple(int(np.argmin(np.abs(np.array(gk) - base[1][p]))) for p in base[2])
+    KNOTS["skate"] = (base[0], gk, pins)
+    try:
+        ski = make_ski("skate", mod.bump_vector("skate", base, np.r_[v, 0.62, 0.02, -4.0]))
+    finally:
+        KNOTS["skate"] = base
+    case = next(c for c in CAPTIONS if c.ski == "skate" and c.mass == 60.0)
+    zones = solve_caption_case(case, ski)
+    front = zones["front"]
+    lengths = sorted(b - a for a, b in front.intervals)
+    assert front.patches == 2 and lengths[0] < 0.1 * front.length  # a sliver beside a long patch
+    assert mod.counted(zones)["front"].patches == 2  # the option off: every patch counts
+    plain = solve_caption_case(case, make_ski("skate", v))
+    mod.MIN_PATCH_FRAC = 0.1
+    try:
+        assert mod.counted(zones)["front"].patches == -1
+        assert mod.counted(zones)["rear"].patches == zones["rear"].patches  # no sliver there
+        assert mod.counted(plain)["front"].patches == plain["front"].patches == 1
+    finally:
+        mod.MIN_PATCH_FRAC = 0.0
+
+
 def test_a_feature_record_ships_as_the_same_ski_and_says_where_it_stands(tmp_path) -> None:  # type: ignore[no-untyped-def]
     """A record of --param features through ``skisnow calibrate --write-shipped``'s writer: the
     ski file is the fitted ski (z0 and EI on its knots) and its description states the
