@@ -147,9 +147,11 @@ def report(kind: str, v: np.ndarray, opts: FitOptions | None = None) -> dict:
     return {
         "ski": kind,
         "ei_knots_m": list(KNOTS[kind][0]),
-        "ei_n_m2": [round(float(e), 2) for e in ei],
+        # full precision: a stiff ski flattened on the stone feels z0 rounded to 0.1 µm on a
+        # 5 mm grid (issue 30, sixth pass: the skate-k22's captions moved by up to 1.7 points)
+        "ei_n_m2": [float(e) for e in ei],
         "camber_knots_m": list(KNOTS[kind][1]),
-        "camber_mm": [round(float(c) * 1e3, 4) for c in z],
+        "camber_mm": [float(c) * 1e3 for c in z],
         "kick_zone_m": None if ski.kick_zone is None else [round(k, 4) for k in ski.kick_zone],
         "plausibility": prac,
         "hinge_residuals": hinges,
