@@ -137,8 +137,6 @@ KNOWN_MISSES: dict[tuple[str, str], set[tuple[str, str, str]]] = {
     },
     ("skate-k22", "network"): {
         ("Fig. 5 skate 60 kg -120 mm 100 MPa", "front", "patches"),
-        ("Fig. 5 skate 60 kg -120 mm 100 MPa", "front", "share"),
-        ("Fig. 5 skate 60 kg -120 mm 100 MPa", "rear", "share"),
     },
     ("classic", "beam"): {
         ("Fig. 6 classic 60 kg -210 mm 100 MPa", "front", "share"),

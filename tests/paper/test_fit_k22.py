@@ -229,3 +229,21 @@ def test_a_feature_record_ships_as_the_same_ski_and_says_where_it_stands(tmp_pat
     assert "EI levels tail/rear contact/middle/front contact/tip 300/1000/4000/1000/300" in (
         ski.description
     )
+
+
+def test_the_shipped_skate_k22_is_its_record_to_the_caption_digits() -> None:
+    """The record of the sixth pass (z0 on the 5 mm grid of a bump) written by ``--write-shipped``
+    is the fitted ski: the shipped skate-k22 gives the record's caption numbers (beam route),
+    which the fit computed on the unrounded ski. With z0 rounded to 0.1 µm in the record (before
+    the sixth pass) the 60 kg rear share moved by 1.7 points and one zone left its tolerance."""
+    from skisnow.paper import REPRODUCTION_TOLERANCES, caption_table
+
+    doc = json.loads((ROOT / "benchmarks/calibration/calibration_skate_k22_v8.json").read_text())
+    rows = [r.as_dict() for r in caption_table(["skate-k22"], route="beam",
+                                               tolerances=REPRODUCTION_TOLERANCES)]  # fmt: skip
+    assert len(rows) == len(doc["captions"])
+    for got, want in zip(rows, doc["captions"], strict=True):
+        assert (got["case"], got["zone"], got["patches"], got["ok"]) == (
+            want["case"], want["zone"], want["patches"], want["ok"])  # fmt: skip
+        for key in ("length_mm", "mean_pressure_kpa", "load_share_pct"):
+            assert got[key] == pytest.approx(want[key], rel=1e-6, abs=1e-9)
