@@ -23,6 +23,7 @@ load case carries a bending moment). Elsewhere the band is the prior's width.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -33,9 +34,15 @@ from skisnow.identify._model import _design, _Problem
 from skisnow.ski import lower_hull_bracket
 
 __all__ = [
+    "BAND_METHODS",
+    "CONFORMAL_SCALE_EI",
+    "CONFORMAL_SCALE_Z0",
     "LAPLACE_BANDS",
     "LAPLACE_Z0_UNDERCOVER",
     "Posterior",
+    "band_scale",
+    "bands_detail",
+    "calibrated_scale",
     "discrepancy_covariance",
     "discrepancy_rms",
     "identified_profiles",
@@ -68,6 +75,116 @@ LAPLACE_Z0_UNDERCOVER = (
     "determined stations of independent benches of held-out and seeded skis (shop plans, "
     "5-10 µm; target 90-98 %); a parametric bootstrap (--bootstrap 8) widens them"
 )
+
+
+#: The conformal calibration of the default bands (:func:`calibrated_scale`): the Laplace
+#: posterior's standard deviations at the determined stations multiplied by these factors (EI:
+#: of log EI; z0). Calibrated, not validated: conformal risk control at alpha = 0.10 on the seeded
+#: plausible skis 1-14 (``skisnow.bench.random_ski``), one unit per ski, its independent reference
+#: benches (``skisnow.bench.reference_bench``, 1 mm finite differences) of the shop plan at 5 and
+#: 10 µm noise, the fits identify_ski's defaults; exact factors 1.324 (EI) and 4.659 (z0),
+#: rounded up (benchmarks/bench_band_conformal.py; docs/validation/identification-uncertainty.md,
+#: eighth pass, with the predictions on other skis and plans).
+CONFORMAL_ALPHA = 0.10
+CONFORMAL_SCALE_EI = 1.33
+CONFORMAL_SCALE_Z0 = 4.66
+CONFORMAL_SET = "seeded skis 1-14, shop plan, 5 and 10 µm"
+#: What the conformal bands are known to be worth (the eighth pass's predictions).
+CONFORMAL_COVERAGE = (
+    "; measured on independent benches of other skis (seeded skis 15-24, held-out 1001-1003 "
+    "and issue 25's ski; shop plans, 5-10 µm): the truth inside them at 99-100 % of the "
+    "determined stations for z0 (above the 90-98 % target: wider than most skis need) and "
+    "92-97 % for EI"
+)
+
+
+def calibrated_scale(
+    normalised_errors: Sequence[NDArray[np.float64]], *, alpha: float = 0.10, level: float = 2.0
+) -> float:
+    """The factor k by which a band of ``level`` standard deviations must be widened so that,
+    on a new unit exchangeable with the calibration units, the expected share of its stations
+    outside the widened band is at most ``alpha``: conformal risk control (Angelopoulos, Bates,
+    Fisch, Lei & Schuster 2024, "Conformal risk control", Theorem 1; the split-conformal
+    calibration of Vovk, Gammerman & Shafer 2005, and Angelopoulos & Bates 2023, §2, with a
+    bounded loss in place of a 0/1 miss).
+
+    ``normalised_errors``: per calibration unit (one ski: its independent reference benches,
+    never the fit's forward model) the errors |estimate - truth| / sd at its determined
+    stations. The loss of a unit at factor k is the share L_i(k) of its stations with error
+    > ``level`` k, non-increasing in k and in [0, 1]; the factor is the smallest k with
+
+        (Σ_i L_i(k) + 1) / (n + 1) <= alpha,
+
+    searched over the steps of the L_i (the errors / ``level``).
+
+    Why a unit is a ski, not a station: stations of one fit are strongly correlated (a fit
+    landing in the wrong basin misses z0 at most of its stations at once), so only whole skis
+    are exchangeable; pooling stations as if independent would claim a precision the
+    calibration set does not have.
+
+    Guarantee: E[L_{n+1}(k)] <= alpha, the expectation over the calibration skis and the new
+    ski, i.e. the *average over skis* of the share of determined stations covered is at least
+    1 - alpha; nothing is said about one ski (a ski whose fit lands far off may stay covered at
+    a few %), nor about skis unlike the calibration set (other plans, noise, shapes). The
+    guarantee is one-sided: the over-coverage is only bounded by E[L] >= alpha - 2/(n + 1)
+    (Theorem 2, for continuous losses), vacuous for n < 2/alpha - 1. With a loss bounded by 1
+    the rule needs n >= 1/alpha - 1 units (9 at alpha = 0.10, 19 at 0.05); with fewer it
+    returns ``inf``.
+    """
+    units = [np.sort(np.asarray(e, dtype=float).ravel()) for e in normalised_errors]
+    units = [e for e in units if e.size]
+    n = len(units)
+    if not (0.0 < alpha < 1.0) or level <= 0.0:
+        raise ValueError(f"alpha must be in (0, 1) and level > 0, got {alpha!r}, {level!r}")
+    if n == 0 or (1.0 / (n + 1)) > alpha:
+        return float("inf")
+    cand = np.unique(np.concatenate([[0.0], *units])) / level
+    risk = np.zeros(cand.size)
+    for e in units:
+        risk += 1.0 - np.searchsorted(e, level * cand, side="right") / e.size
+    ok = (risk + 1.0) / (n + 1) <= alpha * (1.0 + 1e-12)
+    return float(cand[np.argmax(ok)])
+
+
+#: The bands :func:`~skisnow.identify.identify_ski` can write (``bands=``).
+BAND_METHODS = ("laplace", "conformal")
+
+
+def band_scale(bands: str, *, calibrated_on: bool = True) -> tuple[float, float]:
+    """The factors (log EI, z0) on the Laplace posterior's standard deviations of the band
+    method ``bands`` (:data:`BAND_METHODS`); the conformal factors only on the fits and bands
+    they were calibrated on (``calibrated_on``: the default penalty, the smoothing bias, no
+    discrepancy term, no population prior)."""
+    from skisnow._errors import InputError
+
+    if bands not in BAND_METHODS:
+        raise InputError(f"bands must be one of {', '.join(BAND_METHODS)}, got {bands!r}")
+    if bands == "conformal" and not calibrated_on:
+        raise InputError(
+            "bands='conformal' scales the default bands (the smoothness penalty with the "
+            "smoothing bias, no discrepancy term, no population prior): its factors are "
+            "calibrated on those only"
+        )
+    return (CONFORMAL_SCALE_EI, CONFORMAL_SCALE_Z0) if bands == "conformal" else (1.0, 1.0)
+
+
+def bands_detail(bands: str, *, smoothing: bool, discrepancy: float = 0.0) -> str:
+    """The ``bands`` detail of an identified ski's provenance: the method that made its bands
+    (``bands``, with the smoothing bias, with a discrepancy of ``discrepancy`` m rms) and what
+    they are known to be worth."""
+    k_e, k_z = band_scale(bands)
+    text = LAPLACE_BANDS
+    if bands == "conformal":
+        text = (f"Laplace posterior, widths scaled ×{k_e:g} (log EI) and ×{k_z:g} (z0) at the "
+                "determined stations (split-conformal calibration, conformal risk control at "
+                f"{100 * CONFORMAL_ALPHA:g} %, on 14 independent benches: {CONFORMAL_SET}; "
+                "Angelopoulos et al. 2024), 95 % = 2 sd")  # fmt: skip
+    if smoothing:
+        text += ", with the estimated smoothing bias"
+    if discrepancy > 0:
+        text += (f", with a model discrepancy of the fit's own excess {discrepancy * 1e6:.2g} µm "
+                 f"rms over {DISCREPANCY_LENGTH * 1e3:g} mm (Kennedy & O'Hagan 2001)")  # fmt: skip
+    return text + (CONFORMAL_COVERAGE if bands == "conformal" else LAPLACE_Z0_UNDERCOVER)
 
 
 def _penalised_step(sol: _LmResult, pen):
@@ -274,11 +391,18 @@ def identified_profiles(
     *,
     bent: tuple[float, float],
     measured: tuple[float, float],
+    scale: tuple[float, float] = (1.0, 1.0),
 ) -> Profiles:
     """EI and z0 of the fitted parameters with their standard deviations, what the bench
     determines (module docstring; ``bent``: the span between the outermost contact points of
     the load cases [m], ``measured``: the first and last station [m]) and the posterior's
     modes.
+
+    ``scale``: factors (log EI, z0) on the posterior's standard deviations at the determined
+    stations (:data:`CONFORMAL_SCALE_EI`, :data:`CONFORMAL_SCALE_Z0` for the calibrated
+    bands), applied to the modes' station rows alike, so that samples spread as the bands say:
+    the posterior D C D with D the diagonal of the factors (the correlations kept). What is
+    determined is decided on the unscaled posterior; elsewhere the band stays the prior's.
 
     EI [N m²] and the standard deviation of log EI at stations ``ex`` 20 mm apart, z0 [m]
     resting on the plane (zero at the two support points of its lower convex hull) and its
@@ -316,10 +440,13 @@ def identified_profiles(
     det_e = (sd(be, data_cov) < DETERMINED_RATIO * prior_e) & (ex >= bent[0]) & (ex <= bent[1])
     det_z = (sd(tz, data_cov) < DETERMINED_RATIO * prior_z) & (cx >= measured[0])
     det_z &= cx <= measured[1]
-    sd_e = np.where(det_e, sd_e, np.maximum(sd_e, prior_e))
+    k_e, k_z = (float(f) for f in scale)
+    if not (k_e > 0.0 and k_z > 0.0 and np.isfinite(k_e) and np.isfinite(k_z)):
+        raise ValueError(f"band scale factors must be finite and > 0, got {scale!r}")
+    sd_e = np.where(det_e, k_e * sd_e, np.maximum(sd_e, prior_e))
     # the prior's width where not determined, capped at the ski file's plausible camber band
     # (10 mm, skisnow._quantities 'camber_sd': a camber is 0-5 mm, so 10 mm says "unknown")
-    sd_zz = np.minimum(np.where(det_z, sd_zz, np.maximum(sd_zz, prior_z)), _Z0_SD_CAP)
+    sd_zz = np.minimum(np.where(det_z, k_z * sd_zz, np.maximum(sd_zz, prior_z)), _Z0_SD_CAP)
     # the posterior's square root at the stations, by singular values of its correlation form:
     # each station's row divided by its own standard deviation first, so that log EI
     # (dimensionless, ~0.01-0.3) and z0 (metres, ~1e-6-1e-5) count alike — unscaled, the SVD
@@ -328,12 +455,14 @@ def identified_profiles(
     rows = np.concatenate([be, tz])
     w, v = np.linalg.eigh(0.5 * (post.covariance + post.covariance.T))
     root = rows @ (v * np.sqrt(np.maximum(w, 0.0)))  # (stations, n_params)
-    scale = np.sqrt(np.sum(root**2, axis=1))
-    scale = np.where(scale > 0.0, scale, 1.0)
-    u, s, _ = np.linalg.svd(root / scale[:, None], full_matrices=False)
+    norm = np.sqrt(np.sum(root**2, axis=1))
+    norm = np.where(norm > 0.0, norm, 1.0)
+    u, s, _ = np.linalg.svd(root / norm[:, None], full_matrices=False)
     share = np.cumsum(s**2) / max(float(np.sum(s**2)), 1e-300)
     k = int(min(MAX_MODES, np.searchsorted(share, 0.995) + 1))
-    modes = (scale[:, None] * (u[:, :k] * s[:k])).T  # (k, stations)
+    modes = (norm[:, None] * (u[:, :k] * s[:k])).T  # (k, stations)
+    # the calibrated factors on the determined stations' rows (D C D: correlations kept)
+    modes = modes * np.concatenate([np.where(det_e, k_e, 1.0), np.where(det_z, k_z, 1.0)])
     return Profiles(
         ex=ex, ei=ei, sd_log_ei=sd_e, ei_determined=det_e, cx=cx, z_rest=z_rest, sd_z=sd_zz,
         z_determined=det_z, modes_log_ei=modes[:, : ex.size], modes_z0=modes[:, ex.size :],
