@@ -77,6 +77,10 @@ def _cover(e: np.ndarray, k: float) -> float:
     return float(np.mean(e <= 2 * k)) if e.size else np.nan
 
 
+def _spread(per: list[float]) -> str:
+    return f"{100 * min(per):.0f} / {100 * np.median(per):.0f} / {100 * max(per):.0f} %"
+
+
 def calibrate(fits, alpha: float, boot: int) -> None:
     skis = sorted({s for s, _, _ in fits}, key=lambda s: (len(s), s))
     print(f"\ncalibration: {len(skis)} skis ({', '.join(skis)}), alpha {alpha:g}")
@@ -109,7 +113,7 @@ def predict(sets, k_ei: float, k_z0: float) -> None:
     print(
         "| set | plan | noise µm | fits | EI in band: Laplace → scaled | z0 in band: Laplace → "
         "scaled | EI half-width %: Laplace → scaled | z0 half-width µm: Laplace → scaled "
-        "| z0 per ski, scaled: min / median / max | skis < 90 % (z0) |"
+        "| z0 per ski, min / median / max: Laplace → scaled | skis < 90 % (z0) |"
     )
     print("| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |")  # fmt: skip
     rows = []
@@ -124,6 +128,7 @@ def predict(sets, k_ei: float, k_z0: float) -> None:
             hw_e2 = np.median([np.median(100 * np.expm1(2 * k_ei * f[2]["sd_ei"])) for f in sel])
             hw_z = np.median([np.median(2e6 * f[2]["sd_z0"]) for f in sel])
             per = [_cover(f[2]["z0"], k_z0) for f in sel]
+            per0 = [_cover(f[2]["z0"], 1.0) for f in sel]
             n_e, n_z = ee.size, ez.size
             print(f"| {name} | {plan} | {noise:g} | {len(sel)} "
                   f"| {np.sum(ee <= 2)}/{n_e} {100 * _cover(ee, 1):.1f} % → "
@@ -131,8 +136,9 @@ def predict(sets, k_ei: float, k_z0: float) -> None:
                   f"| {np.sum(ez <= 2)}/{n_z} {100 * _cover(ez, 1):.1f} % → "
                   f"**{np.sum(ez <= 2 * k_z0)}/{n_z} {100 * _cover(ez, k_z0):.1f} %** "
                   f"| {hw_e:.1f} → {hw_e2:.1f} | {hw_z:.1f} → {k_z0 * hw_z:.1f} "
-                  f"| {100 * min(per):.0f} / {100 * np.median(per):.0f} / {100 * max(per):.0f} % "
-                  f"| {sum(p < 0.9 for p in per)} of {len(per)} |", flush=True)  # fmt: skip
+                  f"| {_spread(per0)} → {_spread(per)} "
+                  f"| {sum(p < 0.9 for p in per0)} → {sum(p < 0.9 for p in per)} of {len(per)} |",
+                  flush=True)  # fmt: skip
             rows += [(name, plan, f) for f in sel]
     print(
         "\n| set | plan | ski | noise µm | z0 error rms µm | EI in band: Laplace → scaled "

@@ -2,7 +2,8 @@
 and power (issue 25, item 4).
 
 Run:  uv run python benchmarks/bench_pair_ties.py [--skis classic 1001 1002 1003]
-      [--seeds 1-6] [--noise-um 5] [--bootstrap 0] [--jobs 2] [--cache DIR] [--out rows.jsonl]
+      [--seeds 1-6] [--noise-um 5] [--bootstrap 0] [--bands laplace] [--jobs 2] [--cache DIR]
+      [--out rows.jsonl]
       then ``--table --out rows.jsonl`` prints the table of the rows written.
 
 For each true ski × noise seed:
@@ -17,7 +18,8 @@ For each true ski × noise seed:
 * ``skisnow.identify.identify_ski`` (defaults, BLAS on one thread) → the identified ski (with
   ``--bootstrap B`` also its bands widened by ``bootstrap_bands(replicates=B)``, as
   ``skisnow identify --bootstrap B``; with ``--discrepancy-bands`` the opt-in bands with the
-  model discrepancy of the fit's own excess, ``identify_ski(discrepancy_bands=True)``);
+  model discrepancy of the fit's own excess, ``identify_ski(discrepancy_bands=True)``; with
+  ``--bands conformal`` the Laplace bands' conformal widths, ``identify_ski(bands='conformal')``);
 * **coverage**: the identified ski paired with the truth, ``skisnow.workflows.same_ski``: a tie?
   (target: 95 % of the rows, the test's level), and the rule before (differences within the
   pointwise combined 95 % band at >= 95 % of the compared stations) on the same pair;
@@ -115,14 +117,14 @@ def old_rule(a, b) -> bool:
 
 
 def run_one(args: tuple) -> dict:
-    name, seed, noise_um, cache, boot, disc = args
+    name, seed, noise_um, cache, boot, disc, bands = args
     from skisnow.identify import identify_ski
     from skisnow.workflows import same_ski
 
     true = true_ski(name)
     bench = bench_of(name, seed, noise_um, Path(cache))
     t0 = time.process_time()
-    res = identify_ski(bench, discrepancy_bands=disc)
+    res = identify_ski(bench, discrepancy_bands=disc, bands=bands)
     cpu = time.process_time() - t0
     if boot:
         from skisnow.identify import bootstrap_bands
@@ -130,7 +132,7 @@ def run_one(args: tuple) -> dict:
         res = bootstrap_bands(res, bench, replicates=boot)
     ident = res.ski
     row = {"ski": name, "seed": seed, "noise_um": noise_um, "bootstrap": boot, "cpu": cpu,
-           "discrepancy_bands": disc,
+           "discrepancy_bands": disc, "bands": bands,
            "cpu_total": time.process_time() - t0, "exit": 0 if res.converged else 3}  # fmt: skip
     for key, other in (("same", true), ("ei110", stiffer(true)), ("bump50", bumped(true)),
                        ("bump50r", bumped(true, at=-0.40))):  # fmt: skip
@@ -179,6 +181,7 @@ def table(rows: list[dict]) -> None:
 
     def key(r: dict) -> tuple:
         bands = f"{r['bootstrap']}" + (" + discrepancy" if r.get("discrepancy_bands") else "")
+        bands += " + conformal" if r.get("bands") == "conformal" else ""
         return (r["ski"], r["noise_um"], bands)
 
     keys = sorted({key(r) for r in rows}, key=str)
@@ -208,6 +211,8 @@ def main() -> None:
     ap.add_argument("--discrepancy-bands", action="store_true",
                     help="identify_ski(discrepancy_bands=True): the bands with the model "
                     "discrepancy of the fit's own excess (opt-in)")  # fmt: skip
+    ap.add_argument("--bands", default="laplace", choices=["laplace", "conformal"],
+                    help="identify_ski(bands=...)")  # fmt: skip
     ap.add_argument("--jobs", type=int, default=1)
     ap.add_argument("--cache", default=str(Path.home() / ".cache" / "skisnow-identify-bench"))
     ap.add_argument("--out", default=None, help="append every row as a JSON line")
@@ -223,7 +228,7 @@ def main() -> None:
         return
     lo, _, hi = a.seeds.partition("-")
     seeds = range(int(lo), int(hi or lo) + 1)
-    jobs = [(s, k, a.noise_um, a.cache, a.bootstrap, a.discrepancy_bands)
+    jobs = [(s, k, a.noise_um, a.cache, a.bootstrap, a.discrepancy_bands, a.bands)
             for s in a.skis for k in seeds]  # fmt: skip
     print(f"load average at start: {os.getloadavg()}", flush=True)
     rows = []
