@@ -105,7 +105,8 @@ def test_the_conformal_bands_are_k_times_the_laplace_bands(pair, tmp_path: Path)
         f"×{CONFORMAL_SCALE_EI:g} (log EI)" in detail and f"×{CONFORMAL_SCALE_Z0:g} (z0)" in detail
     )
     assert "conformal" in detail and "seeded skis 1-14" in detail
-    assert "conformal" not in a.provenance.detail("bands")
+    lap = a.provenance.detail("bands")
+    assert lap.startswith("Laplace posterior, 95 % = 2 sd") and "widths scaled" not in lap
 
 
 def test_the_conformal_bands_are_refused_where_they_are_not_calibrated(pair, tmp_path) -> None:
