@@ -19,6 +19,12 @@ A station is *determined by the bench* where the data shrink the prior's varianc
 quarter (posterior standard deviation below half the prior's), and, for the stiffness, where the
 bench bends the ski: between the outermost contact points of its load cases (beyond them no
 load case carries a bending moment). Elsewhere the band is the prior's width.
+
+On request (``identify_ski(bands='conformal')``) the widths at the determined stations are
+multiplied by factors measured on independent benches of skis with a known truth
+(:func:`calibrated_scale`: split-conformal calibration by conformal risk control, one unit per
+ski), and the posterior's modes alike: what a band at one fit cannot see (the basin a fit
+landed in) is then at least counted, at the price of widths set by the worst calibration skis.
 """
 
 from __future__ import annotations
