@@ -19,6 +19,9 @@ Calibration (skis ``--calibrate``, default 1-14, both noise levels): the factor 
 unit per ski: its 5 and 10 µm fits' stations together), per noise level for the check that one
 factor serves both, and a ski-block bootstrap (skis drawn with replacement) for its spread.
 
+``--calibrate-plan full``: the same calibration on the full-plan fits of the calibration skis
+(``--full-store``), its factors (rounded up to 0.01) predicted on the held-out skis' full plans.
+
 ``--predict``: with the factors of the library (``CONFORMAL_SCALE_EI``, ``CONFORMAL_SCALE_Z0``),
 nothing refitted to these skis, the coverage before (Laplace) and after (scaled) on skis 15-24,
 the held-out skis 1001-1003 and issue 25's ski (shop), and the held-out skis' full plans; the
@@ -81,7 +84,11 @@ def _spread(per: list[float]) -> str:
     return f"{100 * min(per):.0f} / {100 * np.median(per):.0f} / {100 * max(per):.0f} %"
 
 
-def calibrate(fits, alpha: float, boot: int) -> None:
+def calibrate(fits, alpha: float, boot: int) -> tuple[float, float]:
+    """Print the calibration table; return the pooled factors (EI, z0)."""
+    if not fits:
+        print("\nno cached fits to calibrate on")
+        return float("nan"), float("nan")
     skis = sorted({s for s, _, _ in fits}, key=lambda s: (len(s), s))
     print(f"\ncalibration: {len(skis)} skis ({', '.join(skis)}), alpha {alpha:g}")
     print(
@@ -90,6 +97,7 @@ def calibrate(fits, alpha: float, boot: int) -> None:
     )
     print("| --- | --- | --- | --- | --- | --- | --- |")  # fmt: skip
     rng = np.random.default_rng(0)
+    pooled_k: dict[str, float] = {}
     for q in ("ei", "z0"):
         for noise in (None, 5.0, 10.0):
             sel = [f for f in fits if noise is None or f[1] == noise]
@@ -102,10 +110,13 @@ def calibrate(fits, alpha: float, boot: int) -> None:
             avg = np.mean([_cover(u, k) for u in units])
             pooled = _cover(np.concatenate(units), k)
             lo, mid, hi = np.quantile(ks, [0.05, 0.5, 0.95])
+            if noise is None:
+                pooled_k[q] = k
             what = "5 and 10" if noise is None else f"{noise:g}"
             print(f"| {'EI' if q == 'ei' else 'z0'} | {what}"
                   f" | {len(units)} | {100 * lap:.1f} % | {k:.3f} | {lo:.2f} / {mid:.2f} / {hi:.2f}"
                   f" | {100 * avg:.1f} / {100 * pooled:.1f} % |")  # fmt: skip
+    return pooled_k["ei"], pooled_k["z0"]
 
 
 def predict(sets, k_ei: float, k_z0: float) -> None:
@@ -162,8 +173,20 @@ def main() -> None:
     ap.add_argument("--alpha", type=float, default=CONFORMAL_ALPHA)
     ap.add_argument("--boot", type=int, default=1000, help="ski-block bootstrap draws")
     ap.add_argument("--predict", action="store_true")
+    ap.add_argument("--calibrate-plan", default="shop", choices=["shop", "full"],
+                    help="full: the full plan's own factors")  # fmt: skip
     a = ap.parse_args()
     print(f"load average at start: {os.getloadavg()}")
+    if a.calibrate_plan == "full":
+        # the full plan's own factors (calibrated on the full-plan fits of the calibration
+        # skis in --full-store), predicted on the held-out skis' full plans
+        k_ei, k_z0 = calibrate(load(a.full_store, _skis(a.calibrate), a.noise_um, "full"),
+                               a.alpha, a.boot)  # fmt: skip
+        k_ei, k_z0 = np.ceil(100 * k_ei) / 100, np.ceil(100 * k_z0) / 100
+        full = load(a.full_store, VALIDATION, a.noise_um, "full")
+        predict([("held out", "full", full)], float(k_ei), float(k_z0))
+        print(f"load average at end: {os.getloadavg()}")
+        return
     calibrate(load(a.store, _skis(a.calibrate), a.noise_um, "shop"), a.alpha, a.boot)
     if a.predict:
         sets = [
