@@ -60,9 +60,9 @@ def fit_one(args: tuple) -> str:
         grabbed.update(sol=sol, model_error=model_error, smoothing=smoothing)
         return post0(sol, model_error, smoothing, discrepancy)
 
-    def prof_spy(problem, parameters, post, x_tail, x_tip, *, bent, measured):
+    def prof_spy(problem, parameters, post, x_tail, x_tip, *, bent, measured, **kw):
         grabbed.update(problem=problem, x_tail=x_tail, x_tip=x_tip, bent=bent, measured=measured)
-        return prof0(problem, parameters, post, x_tail, x_tip, bent=bent, measured=measured)
+        return prof0(problem, parameters, post, x_tail, x_tip, bent=bent, measured=measured, **kw)
 
     ident.posterior, ident.identified_profiles = post_spy, prof_spy
     bench = bench_of(name, plan, noise_um, Path(cache))
