@@ -15,7 +15,12 @@ import pytest
 from skisnow import InputError
 from skisnow.bench import run_bench
 from skisnow.identify import identify_ski
-from skisnow.identify._bands import CONFORMAL_SCALE_EI, CONFORMAL_SCALE_Z0, calibrated_scale
+from skisnow.identify._bands import (
+    CONFORMAL_SCALE_EI,
+    CONFORMAL_SCALE_Z0,
+    band_scale,
+    calibrated_scale,
+)
 from skisnow.ski import read_ski, write_ski
 from skisnow.ski._shipped import build_shipped
 
@@ -118,6 +123,9 @@ def test_the_conformal_bands_are_refused_where_they_are_not_calibrated(pair, tmp
         identify_ski(bench, bands="wide")
     with pytest.raises(InputError, match="calibrated on those only"):
         identify_ski(bench, bands="conformal", discrepancy_bands=True)
+    with pytest.raises(InputError, match="no population prior"):  # what identify_ski asks
+        band_scale("conformal", calibrated_on=False)  # with prior=..., or without the bias
+    assert band_scale("laplace", calibrated_on=False) == (1.0, 1.0)
     src = write_bench(bench, tmp_path / "b.csv")
     args = ["identify", str(src), "--out", str(tmp_path / "s.json"), "--bands", "conformal"]
     assert main([*args, "--bootstrap", "2", "--json"]) == 2
