@@ -46,7 +46,11 @@ def cached_fits(store, skis, noise_um, plan):
             if not path.exists():
                 continue
             with open(path, "rb") as fh:
-                yield s, n, true, pickle.load(fh)
+                g = pickle.load(fh)
+            # fits cached before the opt-in population prior (main, 2026-11-26) have none
+            g["problem"].__dict__.setdefault("prior", None)
+            g["problem"].__dict__.setdefault("prior_rows", None)
+            yield s, n, true, g
 
 
 def fit_one(args: tuple) -> str:
