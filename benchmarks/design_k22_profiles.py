@@ -44,7 +44,6 @@ the zones per case, the profile on the stations in um).
 from __future__ import annotations
 
 import argparse
-import contextlib
 import json
 import math
 import sys
@@ -54,10 +53,9 @@ from pathlib import Path
 
 import numpy as np
 from scipy.interpolate import PchipInterpolator
-from scipy.optimize import differential_evolution, minimize
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from fit_k22 import errors, penalty, tally
+from fit_k22 import de_then_powell, errors, penalty, tally
 
 from skisnow.paper import CAPTIONS, REPRODUCTION_TOLERANCES, compare_case
 from skisnow.pipeline import solve_case
@@ -265,30 +263,14 @@ def main() -> None:
 
     u0 = np.clip((w0 - lo) / (hi - lo), 0.0, 1.0)
     f(u0)
-    if a.minutes > 0:
-        rng = np.random.default_rng(a.seed)
-        n_pop = a.popsize * lo.size
-        init = np.clip(u0 + a.sigma * rng.standard_normal((n_pop, lo.size)), 0.0, 1.0)
-        init[0] = u0
-        de = differential_evolution(
-            f, [(0.0, 1.0)] * lo.size, init=init, maxiter=100000, seed=a.seed, polish=False,
-            tol=0.0, mutation=(0.4, 0.9), recombination=0.7,
-            callback=lambda *_: time.monotonic() - w_clock > 60 * a.minutes,
-        )  # fmt: skip
-        print(f"DE: {de.nit} generations, {de.nfev} evaluations, penalty {de.fun:.3f}")
-    w1 = time.monotonic()
-
-    class _Stop(Exception):
-        pass
-
-    def g(u: np.ndarray) -> float:
-        if time.monotonic() - w1 > 60 * a.powell_minutes:
-            raise _Stop
-        return f(u)
-
-    with contextlib.suppress(_Stop):
-        minimize(g, np.clip((state["w"] - lo) / (hi - lo), 0, 1), method="Powell",
-                 bounds=[(0.0, 1.0)] * lo.size, options={"xtol": 1e-4, "ftol": 1e-6})  # fmt: skip
+    rng = np.random.default_rng(a.seed)
+    n_pop = a.popsize * lo.size
+    init = np.clip(u0 + a.sigma * rng.standard_normal((n_pop, lo.size)), 0.0, 1.0)
+    init[0] = u0
+    de_then_powell(
+        f, init, seed=a.seed, minutes=a.minutes, powell_minutes=a.powell_minutes, clock=w_clock,
+        best=lambda: np.clip((state["w"] - lo) / (hi - lo), 0, 1),
+    )  # fmt: skip
     w = state["w"]
     h = profile_heights(prof, x, w)
     rows = rows_of(prof, ski, x, h)

@@ -61,6 +61,7 @@ import dataclasses
 import json
 import math
 import time
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -296,6 +297,47 @@ def tally(rows: list) -> tuple[int, int, int]:
     return zones, n_ok, len(e) + n_patch + sum(r.paper is None for r in rows)
 
 
+def de_then_powell(
+    f: Callable[[np.ndarray], float],
+    init: np.ndarray,
+    *,
+    seed: int,
+    minutes: float,
+    powell_minutes: float,
+    clock: float,
+    best: Callable[[], np.ndarray],
+) -> int | None:
+    """The search of every k22 fit on the unit box: SciPy's differential evolution from the
+    population ``init`` until ``minutes`` of wall time since ``clock`` (none when 0), then Powell
+    from ``best()`` (the best point ``f`` has seen) for ``powell_minutes``. ``f`` keeps its own
+    record of the best point and logs it, so a run stopped by either budget loses nothing.
+    Returns DE's generations (None without DE)."""
+    generations = None
+    if minutes > 0:
+        de = differential_evolution(
+            f, [(0.0, 1.0)] * init.shape[1], init=init, maxiter=100000, seed=seed, polish=False,
+            tol=0.0, mutation=(0.4, 0.9), recombination=0.7,
+            callback=lambda *_: time.monotonic() - clock > 60 * minutes,
+        )  # fmt: skip
+        print(f"DE: {de.nit} generations, {de.nfev} evaluations, penalty {de.fun:.3f}")
+        generations = de.nit
+    w1 = time.monotonic()
+
+    class _Stop(Exception):
+        pass
+
+    def g(u: np.ndarray) -> float:
+        if time.monotonic() - w1 > 60 * powell_minutes:
+            raise _Stop
+        return f(u)
+
+    u = best()
+    with contextlib.suppress(_Stop):
+        minimize(g, u, method="Powell", bounds=[(0.0, 1.0)] * u.size,
+                 options={"xtol": 1e-4, "ftol": 1e-6})  # fmt: skip
+    return generations
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("--ski", choices=("skate", "classic"), required=True)
@@ -434,30 +476,14 @@ def main() -> None:
     else:  # no start: the whole box (a Latin hypercube)
         init = (rng.permuted(np.tile(np.arange(n_pop), (lo.size, 1)), axis=1).T
                 + rng.random((n_pop, lo.size))) / n_pop  # fmt: skip
-    if a.minutes > 0:  # --minutes 0: Powell from the (first) start alone
-        de = differential_evolution(
-            f, [(0.0, 1.0)] * lo.size, init=init, maxiter=100000, seed=a.seed, polish=False,
-            tol=0.0, mutation=(0.4, 0.9), recombination=0.7,
-            callback=lambda *_: time.monotonic() - w0 > 60 * a.minutes,
-        )  # fmt: skip
-        print(f"DE: {de.nit} generations, {de.nfev} evaluations, penalty {de.fun:.3f}")
-        state["generations"] = de.nit
-    else:
+    if a.minutes <= 0:  # --minutes 0: Powell from the (first) start alone
         f(us[0])
-    w1 = time.monotonic()
-    u_best = np.clip((state["w"] - lo) / (hi - lo), 0.0, 1.0)
-
-    class _Stop(Exception):
-        pass
-
-    def g(u: np.ndarray) -> float:
-        if time.monotonic() - w1 > 60 * a.powell_minutes:
-            raise _Stop
-        return f(u)
-
-    with contextlib.suppress(_Stop):
-        minimize(g, u_best, method="Powell", bounds=[(0.0, 1.0)] * u_best.size,
-                 options={"xtol": 1e-4, "ftol": 1e-6})  # fmt: skip
+    generations = de_then_powell(
+        f, init, seed=a.seed, minutes=a.minutes, powell_minutes=a.powell_minutes, clock=w0,
+        best=lambda: np.clip((state["w"] - lo) / (hi - lo), 0.0, 1.0),
+    )  # fmt: skip
+    if generations is not None:
+        state["generations"] = generations
     v = state["v"]
     opts = FitOptions(plausibility=False, tolerances=TOL)
     doc = report(kind, v, opts)
