@@ -57,8 +57,14 @@ CONTACT_CASES = ((30.0, 30e6), (60.0, 400e6), (90.0, 100e6))
 
 
 def true_ski(name: str):
+    """The ski named: ``issue25``, a seed of ``random_ski``, or ``shipped:<name>`` (a shipped
+    ski, ``skisnow.ski.get_ski``: spline skis calibrated to the paper's captions, not of the
+    random generator's family)."""
     from skisnow.bench import issue25_ski, random_ski
+    from skisnow.ski import get_ski
 
+    if name.startswith("shipped:"):
+        return get_ski(name.split(":", 1)[1])
     return issue25_ski() if name == "issue25" else random_ski(int(name))
 
 
@@ -69,7 +75,7 @@ def bench_of(name: str, plan: str, noise_um: float, cache: Path, dx_mm: float = 
     from skisnow.bench import BenchData, read_bench, reference_bench, write_bench
 
     cache.mkdir(parents=True, exist_ok=True)
-    path = cache / f"ref_{name}_{plan}_{dx_mm:g}mm.csv"
+    path = cache / f"ref_{name.replace(':', '-')}_{plan}_{dx_mm:g}mm.csv"
     if path.exists():
         clean = read_bench(path)
     else:

@@ -57,7 +57,7 @@ from pathlib import Path
 import numpy as np
 
 sys.path.insert(0, str(Path(__file__).parent))
-from bench_identify_coverage import PLANS, bench_of, true_ski
+from bench_identify_coverage import bench_of, true_ski
 
 from skisnow.identify._cases import _bench_cases, load_cases
 from skisnow.identify._identify import DEFAULT_ELEMENT_LENGTH, _camber_coefficients
@@ -69,39 +69,11 @@ EI_WINDOW = (-0.45, 0.40)
 FINE = np.round(np.arange(-1.10, 1.1005, 0.001), 6)
 
 
-def ski_of(name: str):
-    """``true_ski(name)``, or a shipped ski for ``shipped:<name>`` (``skisnow.ski.get_ski``:
-    spline skis calibrated to the paper's captions, not of the random generator's family)."""
-    from skisnow.ski import get_ski
-
-    return get_ski(name.split(":", 1)[1]) if name.startswith("shipped:") else true_ski(name)
-
-
-def noisy_bench(name: str, plan: str, noise_um: float, cache: Path = CACHE, dx_mm: float = 1.0):
-    """``bench_of`` (the reference bench, cached, seeded noise), shipped skis included."""
-    if not name.startswith("shipped:"):
-        return bench_of(name, plan, noise_um, cache, dx_mm)
-    import pandas as pd
-
-    from skisnow.bench import BenchData, read_bench, reference_bench, write_bench
-
-    path = cache / f"ref_{name.replace(':', '-')}_{plan}_{dx_mm:g}mm.csv"
-    if path.exists():
-        clean = read_bench(path)
-    else:
-        clean = reference_bench(ski_of(name), **PLANS[plan], dx=dx_mm * 1e-3)
-        write_bench(clean, path)
-    t = clean.table.copy()
-    t["height_mm"] = t["height_mm"] + np.random.default_rng(1).normal(0, noise_um * 1e-3, len(t))
-    md = {**clean.metadata, "noise_mm": noise_um * 1e-3, "seed": 1}
-    return BenchData(table=pd.DataFrame(t), metadata=md)
-
-
 def problem_of(name: str, plan: str, n_stiffness: int, cache: Path = CACHE, dx_mm: float = 1.0,
                sigma: float = 1e-6):  # fmt: skip
     """The fit's problem on the noise-free reference bench (identify_ski's defaults: 10 mm
     elements, 5 mm bins, z0 knots at the station spacing), σ = ``sigma`` for every case."""
-    bench = noisy_bench(name, plan, 0.0, cache, dx_mm)
+    bench = bench_of(name, plan, 0.0, cache, dx_mm)
     md, raw = bench.metadata, _bench_cases(bench, bench.ski_name(None))
     x_tail, x_tip = float(md["x_tail_mm"]) * 1e-3, float(md["x_tip_mm"]) * 1e-3
     boot = float(md.get("boot_length_mm", DEFAULT_BOOT_LENGTH * 1e3)) * 1e-3
@@ -229,7 +201,7 @@ def main() -> None:
     )
     print("| " + " | ".join(["---"] * 15) + " |")
     for name in a.skis:
-        true = ski_of(name)
+        true = true_ski(name)
         for plan in a.plans:
             for n_e in a.n_stiffness:
                 t0 = time.process_time()

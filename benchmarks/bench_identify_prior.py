@@ -36,8 +36,7 @@ from functools import cache
 from pathlib import Path
 
 import numpy as np
-from bench_identify_coverage import errors, held_out
-from bench_identify_limit import noisy_bench, ski_of
+from bench_identify_coverage import bench_of, errors, held_out, true_ski
 
 CACHE = Path.home() / ".cache" / "skisnow-identify-bench"
 
@@ -64,8 +63,8 @@ def run(args: tuple) -> dict:
     name, plan, noise, variant, cache_dir = args
     from skisnow.identify import identify_ski
 
-    true = ski_of(name)
-    bench = noisy_bench(name, plan, noise, Path(cache_dir))
+    true = true_ski(name)
+    bench = bench_of(name, plan, noise, Path(cache_dir))
     kw, prior_cpu = {}, 0.0
     if variant == "prior":
         kw["prior"], prior_cpu = _prior(true.kind)
