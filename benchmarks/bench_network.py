@@ -55,7 +55,9 @@ SKI_SETTINGS = {
         "time_limit": 3000.0,
     },
     # the classic-k22 refitted profiles first (issue 30, branch k22inv) trained from scratch
-    # with these settings and a 1500 s LM budget (was 1150 s for the ski before it)
+    # with these settings and a 1500 s LM budget (was 1150 s for the ski before it); the shipped
+    # network is that one widened to 8,28,28,28,16,16 and continued 2400 s by network_widen.py
+    # (docs/validation/network-accuracy.md, seventh pass)
     "classic-k22": {
         "architecture": "8,24,24,24,16,16",
         "adam_steps": 1500,

@@ -128,12 +128,8 @@ KNOWN_MISSES: dict[tuple[str, str], set[tuple[str, str, str]]] = {
         ("Fig. 6 classic 60 kg -210 mm 100 MPa", "rear", "pressure"),
         ("Fig. 6 classic 60 kg -210 mm 100 MPa", "rear", "share"),
         ("Fig. 6 classic 60 kg -70 mm 100 MPa", "front", "length"),
-        ("Fig. 6 classic 60 kg -70 mm 100 MPa", "rear", "share"),
         ("Fig. 7 classic 30 kg -120 mm 200 MPa", "front", "length"),
         ("Fig. 7 classic 30 kg -120 mm 200 MPa", "front", "pressure"),
-        ("Fig. 7 classic 30 kg -120 mm 200 MPa", "front", "share"),
-        ("Fig. 7 classic 30 kg -120 mm 200 MPa", "rear", "share"),
-        ("Fig. 7 classic 30 kg -120 mm 50 MPa", "front", "pressure"),
     },
     ("skate-k22", "network"): {
         ("Fig. 5 skate 60 kg -120 mm 100 MPa", "front", "patches"),
