@@ -175,13 +175,6 @@ def run_one(args: tuple) -> dict:
            "delta": res.model_error[1], "bound_sigma": float(np.sqrt(res.chi2_bound / res.n_bins)),
            # the exit of the rule before issue 25's sixth pass: χ² within the noise-only bound
            "exit_old": 0 if res.at_noise and res.mesh_error[0] <= res.noise / 5 else 3}  # fmt: skip
-    if res.basins:
-        # the opt-in basin check (identify_ski's starts): the largest z0 difference of a near
-        # basin and whether it warned
-        near = [b.z0_difference for b in res.basins if b.delta_cost <= 10.0]
-        row["basin_z0"] = 1e6 * max(near, default=0.0)
-        row["basin_dcost"] = min(b.delta_cost for b in res.basins)
-        row["basin_warn"] = int(any(w.startswith("z0 ambiguous") for w in res.warnings))
     if boot:
         from skisnow.identify import bootstrap_bands
 
@@ -287,8 +280,6 @@ def main() -> None:
         "ei_hw",
         "z0_hw",
     ]
-    if "starts" in json.loads(a.identify_kw):
-        cols += ["basin_z0", "basin_dcost", "basin_warn"]
     if a.bootstrap:
         cols += ["ei_in_b", "z0_in_b", "ei_hw_b", "z0_hw_b", "boot_n", "boot_cpu"]
     if a.contact:

@@ -82,6 +82,8 @@ def main() -> None:
         name, noise = item.split(":")
         with open(Path(a.store) / f"fit_{name}_shop_{float(noise):g}.pkl", "rb") as fh:
             g = pickle.load(fh)
+        g["problem"].__dict__.setdefault("prior", None)
+        g["problem"].__dict__.setdefault("prior_rows", None)
         sol, pr, lam = g["sol"], g["problem"], g["lam"]
         p_t = truth_parameters(pr, name)
         r_t, j_t = pr.evaluate(p_t, jacobian=True)

@@ -34,7 +34,6 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable, Sequence
-from functools import partial
 from typing import Any
 
 import numpy as np
@@ -51,7 +50,6 @@ from skisnow.identify._bands import (
     posterior,
     smoothing_bias,
 )
-from skisnow.identify._basins import check_basins
 from skisnow.identify._cases import _bench_cases, load_cases
 from skisnow.identify._diagnosis import correlated_excess, diagnose
 from skisnow.identify._edges import EDGE_SCALE, edge_refit
@@ -120,7 +118,6 @@ def identify_ski(
     prior: PopulationPrior | None = None,
     progress: Callable[[str], None] | None = None,
     source: str = "",
-    starts: int = 0,
 ) -> IdentificationResult:
     """Identify EI(x) and z0(x) of a ski from a camber-bench sequence (all load cases at once).
 
@@ -215,10 +212,6 @@ def identify_ski(
         Called with a short message after each stage.
     source
         Where the bench came from (file name), recorded in the provenance.
-    starts
-        Refits of the opt-in basin check (:mod:`skisnow.identify._basins`: from the fit ± 3 sd
-        of its weakest z0 modes; the fit is kept, the ``basins`` recorded, a warning when one
-        within a few χ² units differs in z0 by more than the band; about one refit each).
 
     Returns
     -------
@@ -250,8 +243,10 @@ def identify_ski(
     x_tail = float(md.get("x_tail_mm", xmin * 1e3)) * 1e-3 if x_tail is None else float(x_tail)
     x_tip = float(md.get("x_tip_mm", xmax * 1e3)) * 1e-3 if x_tip is None else float(x_tip)
     if stiffness_penalty not in ("quadratic", "huber", "huber-gcv"):
-        raise InputError("stiffness_penalty must be 'quadratic', 'huber' or 'huber-gcv', got "
-                         f"{stiffness_penalty!r}")  # fmt: skip
+        raise InputError(
+            "stiffness_penalty must be 'quadratic', 'huber' or 'huber-gcv', got "
+            f"{stiffness_penalty!r}"
+        )
     if not (np.isfinite(edge_scale) and edge_scale > 0):
         raise InputError(f"edge_scale must be > 0, got {edge_scale}")
     if prior is not None and (stiffness_penalty != "quadratic" or regularisation is not None):
@@ -262,8 +257,11 @@ def identify_ski(
         raise InputError(f"criterion must be 'gcv', 'evidence' or 'case-cv', got {criterion!r}")
     if n_camber is None:
         n_camber = _camber_coefficients(raw, x_tip - x_tail)
-    for opt, val, lo in (("n_stiffness", n_stiffness, 5), ("n_camber", n_camber, 6),
-                         ("n_camber_max", n_camber_max, 6), ("starts", starts, 0)):  # fmt: skip
+    for opt, val, lo in (
+        ("n_stiffness", n_stiffness, 5),
+        ("n_camber", n_camber, 6),
+        ("n_camber_max", n_camber_max, 6),
+    ):
         if not (isinstance(val, int) and val >= lo):
             raise InputError(f"{opt} must be an integer >= {lo}, got {val!r}")
     element_length = DEFAULT_ELEMENT_LENGTH if element_length is None else element_length
@@ -381,9 +379,6 @@ def identify_ski(
         prof = identified_profiles(
             problem, sol.x, post, x_tail, x_tip, bent=bent, measured=(xmin, xmax)
         )
-    basins, basin_note, basin_warn = check_basins(
-        problem, sol, post, prof, starts, partial(fit_bench, problem, cases, nodes, **options), lam
-    )
     for w in outliers:
         say(f"outlier: {w.mass:g} kg at {w.load_position * 1e3:g} mm, x = {w.x * 1e3:.0f} mm")
     seconds = time.perf_counter() - t_start
@@ -463,7 +458,6 @@ def identify_ski(
                 ("model_error_rms_um", round(diag.delta * height_scale * 1e6, 4)),
                 ("outliers", len(outliers)),
                 ("bands", band_note),
-                *basin_note,
                 ("seconds", round(seconds, 2)),
             ),
         ),
@@ -483,7 +477,7 @@ def identify_ski(
         message=str(sol.message),
         seconds=seconds,
         misfit=float(sol.misfit_rms),
-        warnings=diag.warnings + basin_warn,
+        warnings=diag.warnings,
         resolution=tuple(resolution),
         n_bins=problem.n_data,
         chi2_bound=float(fitted.chi2_bound),
@@ -496,5 +490,4 @@ def identify_ski(
         posterior_inflation=post.inflation,
         causes=diag.causes,
         model_error=(diag.delta * height_scale, diag.delta),
-        basins=basins,
     )

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any
 
 import numpy as np
 
@@ -84,9 +83,6 @@ class IdentificationResult:
         of freedom half the time).
     warnings
         The same in words, with what would help.
-    basins
-        The opt-in basin check's refits (``starts``; :class:`~skisnow.identify._basins.Basin`:
-        start, cost minus the fit's, z0 difference from the fit [m], misfit); empty without.
     """
 
     ski: Ski
@@ -114,7 +110,6 @@ class IdentificationResult:
     causes: tuple[str, ...] = ()
     bootstrap: tuple[int, float, float] | None = None
     model_error: tuple[float, float] = (float("nan"), float("nan"))
-    basins: tuple[Any, ...] = ()
 
     @property
     def at_noise(self) -> bool:
