@@ -19,7 +19,9 @@ z0 resolution) from these starts:
 * ``smooth``: a fit at 100 × the z0 smoothness λ_z started at the fit (a stiffer z0 prior: a
   λ_z continuation), then the fit at the default λ_z from there.
 
-Printed for each: the final penalised cost χ² + |P p - t|² (the fit's own objective) and its
+Printed first, for each fit: the quadratic part (a bowl) of its z0 error over the determined
+stations, its x² coefficient and the fit's λ. Then for each start: the final penalised cost
+χ² + |P p - t|² (the fit's own objective) and its
 difference from the fit's, misfit σ, EI rms % (determined stations within -450..+400 mm), z0
 rms µm over the determined stations modulo the line weighted by the fit's bands (as
 ``bench_identify_coverage.errors``), CPU s. The question: when a start reaches a lower cost,
@@ -168,6 +170,13 @@ def main() -> None:
         sc = Scorer(g, name)
         sol = g["sol"]
         base = sc.row(sol)
+        d, xd = sc.z0_dev(sol.x), sc.cx[sc.dz]
+        c = np.polyfit(xd, d, 2)
+        q = np.polyval(c, xd)
+        q = q - np.polyval(np.polyfit(xd, q, 1), xd)
+        print(f"| {name} | {noise} | the fit's z0 error: its bowl (quadratic part) "
+              f"{1e6 * np.sqrt(np.mean(q**2)):.1f} of {base['z0_rms']:.1f} µm rms, x² coefficient "
+              f"{1e6 * c[0]:+.1f} µm/m², λ {sc.lam:g} | | | | | | | | |")  # fmt: skip
         rows = [("cached fit", base, 0.0)]
         starts = [("fit", sol.x), ("truth", truth_parameters(sc.pr, name))]
         modes = posterior_modes(sc, a.modes)
