@@ -272,8 +272,23 @@ def build_command() -> Any:
 
     key = (tuple(app.registered_commands), tuple(app.registered_groups), app.registered_callback)
     if not _BUILT or _BUILT[0][0] != key:
-        _BUILT[:] = [(key, install_gate(typer.main.get_command(app)))]
+        _BUILT[:] = [(key, _literal_help(install_gate(typer.main.get_command(app))))]
     return _BUILT[0][1]
+
+
+def _literal_help(group: Any) -> Any:
+    """Escape the help texts of ``group``'s commands and options for Rich, which Typer renders
+    them with: a unit in brackets (``"Load mass [kg]"``) would otherwise be read as a markup tag
+    and vanish from ``--help``. skisnow's help texts hold no markup of their own."""
+    from rich.markup import escape
+
+    for command in group.commands.values():
+        if command.help:
+            command.help = escape(command.help)
+        for param in command.params:
+            if getattr(param, "help", None):
+                param.help = escape(param.help)
+    return group
 
 
 def _run(args: list[str]) -> int:
