@@ -120,7 +120,7 @@ def read_json_file(
                 f"{where}: {size / 2**20:.1f} MiB, more than the {max_bytes / 2**20:.0f} MiB a "
                 f"{what} can be; is this the right file?"
             )
-        text = p.read_text(encoding="utf-8")
+        text = p.read_text(encoding="utf-8-sig")
     except UnicodeDecodeError:
         raise FileFormatError(f"{where}: not UTF-8 text (a {what} is JSON)") from None
     except OSError as exc:

@@ -279,7 +279,7 @@ def read_bench(path: str | Path) -> BenchData:
     metadata: dict[str, Any] = {}
     if suf == ".csv":
         try:
-            text = path.read_text(encoding="utf-8")
+            text = path.read_text(encoding="utf-8-sig")
         except (OSError, UnicodeDecodeError) as exc:
             raise FileFormatError(f"{path}: cannot read as UTF-8 text ({exc})") from None
         lines = text.splitlines()

@@ -36,7 +36,7 @@ def _read_columns(path: Path, columns: tuple[str, ...], what: str):
         raise FileFormatError(f"{path}: no such {what} file")
     header = ",".join(columns)
     try:
-        text = path.read_text(encoding="utf-8")
+        text = path.read_text(encoding="utf-8-sig")
         table = pd.read_csv(io.StringIO(text), comment="#")
     except (ValueError, OSError) as exc:  # pandas' parser and empty-data errors are ValueErrors
         raise FileFormatError(

@@ -263,7 +263,7 @@ def _text_header_pixel(path: Path) -> tuple[float, float] | None:
     import re
 
     try:
-        with open(path, encoding="utf-8", errors="replace") as fh:
+        with open(path, encoding="utf-8-sig", errors="replace") as fh:
             first = fh.readline()
     except OSError:
         return None
@@ -308,7 +308,7 @@ def _load_text(path: Path) -> np.ndarray:
     cell is reported as the user counts: file line and column. (``np.loadtxt`` counts data rows
     only, and from 0.)"""
     try:
-        lines = path.read_text(encoding="utf-8").splitlines()
+        lines = path.read_text(encoding="utf-8-sig").splitlines()
     except UnicodeDecodeError as exc:
         raise FileFormatError(f"{path}: not a text matrix (not UTF-8: {exc})") from None
     rows: list[list[float]] = []

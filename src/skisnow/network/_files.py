@@ -145,7 +145,7 @@ def read_model_files(path: str | Path) -> tuple[dict[str, np.ndarray], dict[str,
                 f"model file {p} not found (a model is the pair PATH.npz + PATH.json)"
             )
     try:
-        text = json_path.read_text(encoding="utf-8")
+        text = json_path.read_text(encoding="utf-8-sig")
     except UnicodeDecodeError as exc:
         raise FileFormatError(f"{json_path}: not UTF-8 text ({exc})") from None
     arrays, doc = parse_model_bytes(npz_path.read_bytes(), text, where)

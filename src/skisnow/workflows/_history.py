@@ -213,7 +213,7 @@ def read_load_history(path: str | Path, *, max_gap_factor: float = MAX_GAP_FACTO
             "is less); cut it into cycles"
         )
     try:
-        text = path.read_text(encoding="utf-8")
+        text = path.read_text(encoding="utf-8-sig")
     except (OSError, UnicodeDecodeError) as exc:
         raise FileFormatError(f"{path}: cannot read as UTF-8 text ({exc})") from None
     # file line numbers (1-based) of the lines pandas sees: not comments, not blank
