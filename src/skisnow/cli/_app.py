@@ -70,14 +70,18 @@ def report_converged(converged: bool) -> None:
     _state["converged"] = bool(converged) if prev is None else (prev and bool(converged))
 
 
-def report_unconverged(labels: list[str] | tuple[str, ...]) -> None:
+def report_unconverged(labels: list[str] | tuple[str, ...], *, solved: bool = False) -> None:
     """Called by a command whose solves ran elsewhere (Dask workers; read from a sweep's store):
-    each label names an unconverged solve; any makes the run exit with 3."""
+    each label names an unconverged solve; any makes the run exit with 3. ``solved``: the
+    labels are all the unconverged solves of a set that was solved (a sweep's store), so none
+    means every one converged."""
     for label in labels:
         if label not in _state["unconverged"]:
             _state["unconverged"].append(label)
     if labels:
         report_converged(False)
+    elif solved:
+        report_converged(True)
 
 
 def report_domain_warnings(messages: list[str] | tuple[str, ...], *, shown: bool = False) -> None:
@@ -116,9 +120,16 @@ def run_annotations() -> dict[str, Any]:
     caught = _state.get("caught") or []
     _collect(caught)
     _report_implausible()
+    converged = _state.get("converged")
+    # the solves of this process so far (the one door of a case records each): a document
+    # printed before main() reads the record must not say null, or true, when one failed
+    if _state.get("unconverged_log"):
+        converged = False
+    elif converged is None and _state.get("solved_log"):
+        converged = True
     return {
         "skisnow_version": __version__,
-        "converged": _state.get("converged"),
+        "converged": converged,
         "warnings": list(_state["warnings"]),
     }
 
@@ -209,7 +220,8 @@ def main(argv: list[str] | None = None) -> int:
     """Run the CLI; return the exit code (see :data:`EXIT_CODES`; errors: one line on stderr)."""
     args = _renamed(sys.argv[1:] if argv is None else argv)
     _state.update(debug="--debug" in args, converged=None, warnings=[], shown=set(),
-                  unconverged=[], implausible=None, implausible_summary=None)  # fmt: skip
+                  unconverged=[], implausible=None, implausible_summary=None,
+                  unconverged_log=None, solved_log=None)  # fmt: skip
     from skisnow._checks import _ALLOW
     from skisnow._errors import DomainWarning
 
@@ -218,10 +230,18 @@ def main(argv: list[str] | None = None) -> int:
         warnings.simplefilter("always", DomainWarning)
         _state["caught"] = caught
         try:
-            from skisnow.pipeline import recording_implausible, recording_unconverged
+            from skisnow.pipeline import (
+                recording_implausible,
+                recording_solved,
+                recording_unconverged,
+            )
 
-            with recording_unconverged() as log, recording_implausible() as odd:
-                _state["implausible"] = odd
+            with (
+                recording_unconverged() as log,
+                recording_implausible() as odd,
+                recording_solved() as solved,
+            ):
+                _state.update(implausible=odd, unconverged_log=log, solved_log=solved)
                 code = _run(args)
             report_unconverged(log)  # every solve of this process that did not converge
             _report_implausible()  # every solve whose result was implausible (exit 4)

@@ -136,7 +136,7 @@ def explore(
     from skisnow.sweep import unconverged_points
 
     unconverged, not_carried = unconverged_points(ds)
-    report_unconverged(unconverged)  # exit 3, the first named
+    report_unconverged(unconverged, solved=True)  # exit 3, the first named
     if json_out:
         emit_json(
             {

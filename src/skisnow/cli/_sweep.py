@@ -204,7 +204,7 @@ def sweep(
     exported = None
     ds = open_sweep(out)
     unconverged, not_carried = unconverged_points(ds)  # also those solved by Dask workers
-    report_unconverged(unconverged)  # exit 3, the first named
+    report_unconverged(unconverged, solved=True)  # exit 3, the first named
     if netcdf is not None:
         exported = save_netcdf(ds, netcdf)
     doc = {
@@ -395,7 +395,7 @@ def report(
         )  # fmt: skip
     from skisnow.sweep import unconverged_points
 
-    report_unconverged(unconverged_points(study.maps)[0])  # the maps' solves (any worker)
+    report_unconverged(unconverged_points(study.maps)[0], solved=True)  # the maps (any worker)
     from skisnow.workflows import TEMPLATES, compare_fleet, run_cycle, template_history
 
     cycles = []

@@ -53,8 +53,10 @@ from skisnow.pipeline._profiles import (
 from skisnow.pipeline._real import station_masks, zone_station_masks
 from skisnow.pipeline._record import (
     note_implausible,
+    note_solved,
     note_unconverged,
     recording_implausible,
+    recording_solved,
     recording_unconverged,
 )
 
@@ -89,8 +91,10 @@ __all__ = [
     "case_quantities",
     "loaded_profiles",
     "note_implausible",
+    "note_solved",
     "note_unconverged",
     "recording_implausible",
+    "recording_solved",
     "recording_unconverged",
     "resolve_ski",
     "sample_intervals",

@@ -30,7 +30,7 @@ from skisnow.pipeline._profiles import (
     resolve_ski,
     stations,
 )
-from skisnow.pipeline._record import note_implausible, note_unconverged
+from skisnow.pipeline._record import note_implausible, note_solved, note_unconverged
 
 if TYPE_CHECKING:
     from skisnow.contact import (
@@ -186,6 +186,7 @@ def _noted(case: Case, implausible: list[str]) -> Case:
         f"{case.label} {case.mass:g} kg at {case.load_position * 1e3:g} mm on "
         f"{case.snow_modulus / 1e6:g} MPa"
     )
+    note_solved(label)
     if not case.converged:
         note_unconverged(label)
     for note in implausible:

@@ -13,13 +13,15 @@ from collections.abc import Iterator
 
 __all__ = [
     "note_implausible",
+    "note_solved",
     "note_unconverged",
     "recording_implausible",
+    "recording_solved",
     "recording_unconverged",
 ]
 
 _LOCK = threading.Lock()
-_LOGS: dict[str, list[list[str]]] = {"unconverged": [], "implausible": []}
+_LOGS: dict[str, list[list[str]]] = {"unconverged": [], "implausible": [], "solved": []}
 
 
 @contextlib.contextmanager
@@ -60,3 +62,14 @@ def recording_implausible() -> contextlib.AbstractContextManager[list[str]]:
 def note_implausible(label: str) -> None:
     """Record an implausible result (``label``: the case and what was found)."""
     _note("implausible", label)
+
+
+def recording_solved() -> contextlib.AbstractContextManager[list[str]]:
+    """Collect, in the yielded list, a label for every solve inside the block, converged or not
+    (a command's ``converged`` is ``null`` only when it solved nothing)."""
+    return _recording("solved")
+
+
+def note_solved(label: str) -> None:
+    """Record a solve (``label`` names the case) in every open record."""
+    _note("solved", label)
