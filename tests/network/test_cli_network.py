@@ -127,3 +127,21 @@ def test_subprocess_smoke():
     )
     assert res.returncode == 0, res.stderr
     assert json.loads(res.stdout)["ski"] == "skate"
+
+
+def test_predict_states_what_it_is_worth(capsys):
+    """One member has no spread (null, not 0 µm, which reads as exact); the held-out error of
+    the network is printed, and it bounds the network's error against the beam it emulates."""
+    from skisnow.bench import run_bench
+
+    code = main(["predict", "classic", "--mass-kg", "60", "--load-position-mm", "-120", "--json"])
+    doc = json.loads(capsys.readouterr().out)
+    assert code == 0 and doc["members"] == 1
+    assert doc["max_ensemble_spread_um"] is None and doc["spread_um"] is None
+    assert 0 < doc["held_out_mean_error_um"] <= doc["held_out_p95_error_um"]
+    assert doc["held_out_p95_error_um"] <= doc["held_out_max_error_um"]
+    bench = run_bench("classic", masses=[60.0], load_positions=[-0.12])
+    xb, hb = bench.profile(mass_kg=60.0, load_position_mm=-120.0)
+    err_um = np.abs(np.interp(xb, doc["x_mm"], doc["height_mm"]) - hb) * 1e3
+    assert err_um.max() <= doc["held_out_max_error_um"]
+    assert err_um.mean() <= 3 * doc["held_out_mean_error_um"]  # one condition of many

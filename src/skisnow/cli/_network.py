@@ -176,8 +176,11 @@ def predict(
         "min_height_mid_ski_mm": float(h[i_min] * 1e3),
         # Breitschädel (2012): gap to the plane the ski rests on below 50 µm
         "length_below_50um_mm": float(np.sum(breitschaedel_contact(x, h, kick_zone=kick)) * dx_mm),
-        "max_ensemble_spread_um": float(spread.max() * 1e6),
+        # one member has no spread: null, not 0 µm (which would read as "exact"); the held-out
+        # error the network was trained with says what a prediction is worth
+        "max_ensemble_spread_um": float(spread.max() * 1e6) if len(net.members) > 1 else None,
         "members": len(net.members),
+        **_held_out_errors(net.metadata),
         "in_trained_domain": not notes,
     }
     if figure is not None:
@@ -189,13 +192,22 @@ def predict(
                 "warnings": notes,
                 "x_mm": x * 1e3,
                 "height_mm": h * 1e3,
-                "spread_um": spread * 1e6,
+                "spread_um": spread * 1e6 if len(net.members) > 1 else None,
             }
         )
         return
     print_table(
         "Predicted camber profile", ["quantity", "value"], list(summary.items()), floatfmt=".4g"
     )
+
+
+def _held_out_errors(metadata: dict[str, Any]) -> dict[str, float | None]:
+    """The network's error on its held-out bench conditions (recorded at training) [µm]."""
+    err = metadata.get("validation_errors") or {}
+    return {
+        f"held_out_{k}_error_um": None if err.get(f"{k}_um") is None else float(err[f"{k}_um"])
+        for k in ("mean", "p95", "max")
+    }
 
 
 def _profile_figure(
