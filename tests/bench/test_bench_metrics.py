@@ -202,3 +202,17 @@ def test_metrics_of_a_two_ski_bench_use_each_skis_kick_zone() -> None:
         ski_metrics(both)
     assert ski_metrics(both, ski="classic") == ski_metrics(a)
     assert ski_metrics(both, ski="skate") == ski_metrics(b)
+
+
+def test_stiffness_of_a_pocket_closed_at_half_weight_is_flagged() -> None:
+    """Breitschädel's k is ½·m·g over the camber drop from ½ to 1 body weight: a camber
+    stiffness only while the pocket is open at ½ weight. The classic closes at 58 kg (-80 mm):
+    at 130 kg both loads press a closed ski on the stone and k is ~80x the camber's, so it is
+    flagged (a DomainWarning: exit 4 on the CLI) instead of printed as if it were the ski's."""
+    from skisnow._errors import DomainWarning
+
+    open_k = ski_metrics("classic", body_mass=65.0).stiffness  # no warning (filterwarnings=error)
+    with pytest.warns(DomainWarning, match="already closed at half the body mass"):
+        closed = ski_metrics("classic", body_mass=130.0)
+    assert closed.camber_half <= 0.1e-3 < ski_metrics("classic", body_mass=65.0).camber_half
+    assert closed.stiffness > 20 * open_k  # what the warning is about

@@ -182,6 +182,26 @@ def _metrics_from_profiles(
     kick_zone: tuple[float, float] | None,
 ) -> SkiMetrics:
     ch, cf = camber_height(*half), camber_height(*full)
+    if ch <= CLOSED_THRESHOLD:
+        import warnings
+
+        from skisnow._errors import DomainWarning
+
+        warnings.warn(
+            DomainWarning(
+                f"{name}: the camber pocket is already closed at half the body mass "
+                f"({0.5 * body_mass:g} kg at {load_position * 1e3:g} mm: camber "
+                f"{ch * 1e3:.2f} mm <= {CLOSED_THRESHOLD * 1e3:g} mm), so Breitschädel's "
+                f"stiffness between half and full body weight "
+                f"({ski_stiffness(ch, cf, body_mass) * 1e-3:.3g} N/mm) measures the closed ski "
+                f"on the stone, not its camber; give a body mass below "
+                f"{2 * closing:.0f} kg (twice the closing load) for a camber stiffness"
+                if np.isfinite(closing)
+                else f"{name}: the camber pocket is already closed at half the body mass; "
+                "Breitschädel's stiffness does not measure the camber"
+            ),
+            stacklevel=3,
+        )
     lh = contact_lengths(*half, kick_zone=kick_zone)
     lf = contact_lengths(*full, kick_zone=kick_zone)
     return SkiMetrics(
