@@ -37,6 +37,7 @@ __all__ = [
     "allow_implausible",
     "available_memory",
     "check_array",
+    "check_csv_separator",
     "check_finite_column",
     "check_grid_points",
     "check_memory",
@@ -244,6 +245,23 @@ def check_finite_column(
             f"{where}: {row_label(i)}, column {column!r}: {value} is NaN, inf or empty; every "
             "value must be a finite number"
         )
+
+
+def check_csv_separator(
+    header: str, *, where: str, columns: str, error: type[InputError] = InputError
+) -> None:
+    """Refuse a CSV whose header line is separated by ``;`` or tabs instead of commas (a
+    spreadsheet saved in a locale with decimal commas): naming the separator, not a parse error
+    or a "missing column" that would blame the columns. ``columns`` names the expected header."""
+    if "," in header:
+        return
+    for sep, name in ((";", "semicolons"), ("\t", "tabs")):
+        if sep in header:
+            raise error(
+                f"{where}: the header {header.strip()!r} is separated by {name}, not commas (a "
+                "spreadsheet saved with decimal commas?); skisnow reads comma-separated values "
+                f"with decimal points: {columns}"
+            )
 
 
 def available_memory() -> int:

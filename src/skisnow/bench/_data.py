@@ -298,6 +298,11 @@ def read_bench(path: str | Path) -> BenchData:
             n_comment = len(lines)
         import io as _io
 
+        from skisnow._checks import check_csv_separator
+
+        if n_comment < len(lines):
+            check_csv_separator(lines[n_comment], where=f"{path}: line {n_comment + 1}",
+                                columns=",".join(BENCH_COLUMNS), error=FileFormatError)  # fmt: skip
         try:
             table = pd.read_csv(
                 _io.StringIO("\n".join(lines[n_comment:])),

@@ -35,10 +35,19 @@ def _read_columns(path: Path, columns: tuple[str, ...], what: str):
     if not path.is_file():
         raise FileFormatError(f"{path}: no such {what} file")
     header = ",".join(columns)
+    from skisnow._checks import check_csv_separator
+
     try:
         text = path.read_text(encoding="utf-8-sig")
+    except (ValueError, OSError) as exc:  # a UnicodeDecodeError is a ValueError
+        raise FileFormatError(
+            f"{path}: cannot be read as a UTF-8 CSV table with columns {header} ({exc})"
+        ) from None
+    first = next((ln for ln in text.splitlines() if ln.split("#", 1)[0].strip()), "")
+    check_csv_separator(first, where=str(path), columns=header, error=FileFormatError)
+    try:
         table = pd.read_csv(io.StringIO(text), comment="#")
-    except (ValueError, OSError) as exc:  # pandas' parser and empty-data errors are ValueErrors
+    except ValueError as exc:  # pandas' parser and empty-data errors are ValueErrors
         raise FileFormatError(
             f"{path}: cannot be read as a UTF-8 CSV table with columns {header} ({exc})"
         ) from None

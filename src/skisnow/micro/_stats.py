@@ -132,6 +132,11 @@ def read_rank_table(path: str | Path, *, alpha: float = 0.05) -> RankTable:
         raise FileFormatError(f"{path}: no such file") from exc
     except (ValueError, OSError) as exc:  # pandas' parser and empty-data errors are ValueErrors
         raise FileFormatError(f"{path}: not a readable CSV table ({exc})") from exc
+    if len(df.columns) == 1:  # one column: perhaps another separator
+        from skisnow._checks import check_csv_separator
+
+        check_csv_separator(str(df.columns[0]), where=str(path), error=FileFormatError,
+                            columns="structure,glide_time_s,<descriptors>")  # fmt: skip
     missing = [c for c in ("structure", "glide_time_s") if c not in df.columns]
     if missing:
         raise FileFormatError(

@@ -24,6 +24,7 @@ import numpy as np
 from skisnow._checks import (
     OVERRIDE_HINT,
     check_array,
+    check_csv_separator,
     check_finite_column,
     check_value,
     implausible_allowed,
@@ -227,6 +228,9 @@ def read_load_history(path: str | Path, *, max_gap_factor: float = MAX_GAP_FACTO
             f"{path}: needs a header and at least two data rows (columns t_s, force_n or "
             "mass_kg, load_position_mm)"
         )
+    check_csv_separator(kept[0][1], where=f"{path}: line {kept[0][0]}",
+                        columns="t_s,force_n,load_position_mm or t_s,mass_kg,load_position_mm",
+                        error=FileFormatError)  # fmt: skip
     try:
         table = pd.read_csv(
             _io.StringIO("\n".join(line for _, line in kept)), skipinitialspace=True
