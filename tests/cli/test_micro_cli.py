@@ -131,3 +131,31 @@ def test_subprocess_smoke(tmp_path: Path) -> None:
     )
     assert r.returncode == 0, r.stderr
     assert json.loads(r.stdout)["grid"] == [50, 50]
+
+
+@pytest.mark.parametrize("temperature_c", [-2.0, -30.0])
+def test_bearing_pressure_at_the_ice_hardness_is_refused_naming_the_option(
+    capsys, temperature_c: float
+) -> None:
+    """p/H >= 1 has no bearing model (the flat base would rest on the ice everywhere): refused
+    as bad input naming --pressure-kpa and the hardness H(T) in the option's unit, before the
+    map is read (was: 'ice hardness must exceed the pressure [Pa], got 15899999.999999998')."""
+    import re
+
+    from skisnow.micro import deformation_regime
+
+    hardness_kpa = deformation_regime(temperature_c).ice_hardness * 1e-3
+    args = [
+        "--allow-implausible",  # above 20 MPa (at -30 °C) the pressure is implausible too
+        "bearing",
+        "S3",
+        "--grain-um",
+        "500",
+        "--temperature-c",
+        str(temperature_c),
+    ]
+    code = main([*args, "--pressure-kpa", f"{1.0001 * hardness_kpa:.6g}"])
+    err = capsys.readouterr().err
+    assert code == 2 and "--pressure-kpa" in err, err
+    shown = float(re.search(r"ice hardness at \S+ °C \(([\d.]+) kPa", err).group(1))
+    assert shown == pytest.approx(hardness_kpa, rel=1e-3)

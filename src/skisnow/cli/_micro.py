@@ -222,10 +222,17 @@ def bearing(
         warnings.simplefilter("always", DomainWarning)
         regime = micro.deformation_regime(temperature_c, model=hardness_model)
     notes = [str(w.message) for w in caught]
+    pressure = pressure_kpa * 1e3
+    if pressure >= regime.ice_hardness:  # p/H >= 1: no bearing model (eq. 5-9 need p < H)
+        raise InputError(
+            f"--pressure-kpa: {pressure_kpa:g} kPa is not below the ice hardness at "
+            f"{temperature_c:g} °C ({regime.ice_hardness * 1e-3:.0f} kPa, {hardness_model}): the "
+            "flat base would bear on the ice over its whole area (p/H >= 1); a ski presses the "
+            "snow at tens to hundreds of kPa (was the pressure given in Pa?)"
+        )
     t = micro.prepare(
         _load(source, pixel_um, height_unit, seed=seed), cutoff=_cutoff(cutoff_um), form=form
     )
-    pressure = pressure_kpa * 1e3
     if not regime.bearing_model_applies:
         notes.append("the base is softer than the ice here: the bearing model does not apply")
     report_domain_warnings(notes, shown=not json_out)  # exit code 4, listed in --json

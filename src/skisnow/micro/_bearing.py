@@ -141,7 +141,11 @@ def _check(
     positive_finite("grain diameter", diameter, "m")
     positive_finite("macroscopic pressure", pressure, "Pa")
     if not (np.isfinite(hardness) and hardness > pressure):
-        raise InputError(f"ice hardness must exceed the pressure [Pa], got {hardness}")
+        raise InputError(
+            f"the ice hardness ({hardness * 1e-6:.4g} MPa) must exceed the macroscopic pressure "
+            f"({pressure * 1e-3:.4g} kPa): at p/H >= 1 the base bears on the ice over its whole "
+            "area and the bearing model (eq. 5-9) does not apply"
+        )
     if int(stride) < 1:
         raise InputError(f"stride must be a positive number of pixels, got {stride}")
     radius = diameter / 2.0
