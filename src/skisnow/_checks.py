@@ -240,7 +240,9 @@ def check_finite_column(
     bad = ~np.isfinite(values)
     if bad.any():
         i = int(np.flatnonzero(bad)[0])
-        value = "value" if raw is None else f"value {raw[i]!r}"
+        r = None if raw is None else raw[i]
+        r = r.item() if isinstance(r, np.generic) else r  # 'nan', not 'np.float64(nan)'
+        value = "value" if raw is None else f"value {r!r}"
         raise error(
             f"{where}: {row_label(i)}, column {column!r}: {value} is NaN, inf or empty; every "
             "value must be a finite number"

@@ -48,3 +48,16 @@ def test_other_separators_are_named(tmp_path: Path, sep: str) -> None:
         with pytest.raises(FileFormatError, match="not commas") as info:
             reader(bad)
         assert str(bad) in str(info.value), name
+
+
+def test_a_nan_cell_is_shown_as_read(tmp_path: Path) -> None:
+    """The offending value is shown as a number ('nan'), not as NumPy's repr
+    ('np.float64(nan)'), with the file line of the row."""
+    text = "ski,mass_kg,load_position_mm,x_mm,height_mm\n" + "".join(
+        f"a,20,-120,{x},{'nan' if x == 30 else 1.0}\n" for x in range(0, 120, 10)
+    )
+    path = tmp_path / "b.csv"
+    path.write_text(text, encoding="utf-8")
+    with pytest.raises(FileFormatError, match="line 5, column 'height_mm'") as info:
+        read_bench(path)
+    assert "np." not in str(info.value) and "nan" in str(info.value)
