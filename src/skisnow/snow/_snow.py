@@ -242,8 +242,15 @@ class Snow:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", DomainWarning)
             h = self.hardness
+        span = (self.ranges or {}).get("modulus_mpa")
+        # what the modulus is worth: the published relations' spread for this snow, when known
+        worth = (
+            f"; this snow spans E {span[0]:.3g}-{span[1]:.3g} MPa: run both ends"
+            if span is not None
+            else ""
+        )
         return (
-            f"{self.name}: E {self.modulus / 1e6:.4g} MPa ({self.modulus_source}), "
+            f"{self.name}: E {self.modulus / 1e6:.4g} MPa ({self.modulus_source}{worth}), "
             f"{self.temperature_c:g} °C (H_ice {h / 1e6:.3g} MPa, {self.hardness_model}), "
             f"mean grain {self.mean_grain_diameter * 1e6:.0f} µm"
         )
