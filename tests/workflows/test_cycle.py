@@ -181,3 +181,22 @@ def test_flexible_route_balances_and_a_stiff_ski_gives_the_rigid_answer() -> Non
         rigid["mean_pressure"].sel(zone="total").values,
         rtol=0.02,
     )
+
+
+def test_the_stated_time_resolution_bounds_the_error_under_refinement() -> None:
+    """The summary states its time resolution (one frame interval); the wax's contact time and
+    first touch of a coarse cycle agree with those of an 8x finer one to within the two
+    resolutions (each frame stands for its interval, so each time is off by less than one)."""
+    out = {}
+    for n in (12, 96):
+        h = template_history("diagonal", body_mass=70, n_frames=n)
+        ds = run_cycle("classic", h, snow_modulus=100e6, n_points=N, keep_fields=False)
+        out[n] = kick_contact_summary(ds)
+        t = ds["time"].values
+        assert out[n]["resolution"] == pytest.approx(np.max(np.diff(t)))
+    coarse, fine = out[12], out[96]
+    assert coarse["resolution"] > 7 * fine["resolution"]
+    assert coarse["contact_time"] > 0 and np.isfinite(coarse["first_touch"])
+    tol = coarse["resolution"] + fine["resolution"]
+    assert abs(coarse["contact_time"] - fine["contact_time"]) <= tol
+    assert abs(coarse["first_touch"] - fine["first_touch"]) <= tol

@@ -93,6 +93,7 @@ def summary_record(ds: Any) -> dict[str, Any]:
         "first_touch_s": s["first_touch"],
         "last_touch_s": s["last_touch"],
         "touch_downs": s["episodes"],
+        "time_resolution_s": s["resolution"],  # one frame interval: what the times are worth
         "max_kick_share": s["max_kick_share"],
         "max_kick_length_mm": s["max_kick_length"] * 1e3,
         "peak_force_n": float(np.max(ds["load"].values)),
@@ -351,6 +352,8 @@ def cycle(
             for s in summaries
         ],
     )
+    for s in summaries:  # what the times are worth (more frames: --frames)
+        show(f"{s['cycle']}: times resolved to one frame interval, {s['time_resolution_s']:.3g} s")
     for name, doc in uncertainty.items():
         print_cycle_uncertainty(name, doc)
     if real:

@@ -331,7 +331,8 @@ def kick_contact_summary(ds: xr.Dataset) -> dict[str, float | int]:
     dict
         ``contact_time`` [s], ``loaded_time`` [s] (frames with load), ``fraction_of_loaded``,
         ``first_touch``/``last_touch`` [s] (NaN if never), ``episodes`` (separate touch-downs),
-        ``max_kick_share`` and ``max_kick_length`` [m].
+        ``max_kick_share`` and ``max_kick_length`` [m], ``resolution`` [s] (the longest frame
+        interval: the times above are known to about that).
     """
     t = np.asarray(ds["time"].values, dtype=float)
     touch = np.asarray(ds["kick_contact"].values, dtype=bool)
@@ -349,4 +350,5 @@ def kick_contact_summary(ds: xr.Dataset) -> dict[str, float | int]:
         "episodes": len(_runs(touch)),
         "max_kick_share": float(np.max(ds["load_share"].sel(zone="kick").values)),
         "max_kick_length": float(np.max(ds["length"].sel(zone="kick").values)),
+        "resolution": float(np.max(np.diff(t))) if t.size > 1 else float("nan"),
     }
