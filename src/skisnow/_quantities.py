@@ -160,7 +160,7 @@ QUANTITIES: dict[str, Quantity] = {
     ),
     "topography_height": Quantity(
         name="peak-to-valley height of a ski-base topography", unit="m", low=0.0,
-        plausible=(0.0, 5e-3), alternatives=(("µm", 1e-6, 0.0), ("nm", 1e-9, 0.0),
+        plausible=(1e-10, 5e-3), alternatives=(("µm", 1e-6, 0.0), ("nm", 1e-9, 0.0),
                                              ("mm", 1e-3, 0.0)), typical=1e-5,
     ),
     "grain": Quantity(

@@ -137,3 +137,24 @@ def test_remove_form_is_exact_on_polynomials() -> None:
 def test_shared_dir_not_copied() -> None:
     here = Path(__file__).resolve().parents[2]
     assert not list(here.glob("tests/**/*.opd")) and shutil.which("python") is not None
+
+
+def test_heights_read_in_the_wrong_unit_are_refused_both_ways(tmp_path) -> None:
+    """A grind map in metres read with ``height_unit='um'`` is 10^6 too flat: a peak-to-valley of
+    picometres, below the atom (was accepted: Ra 2.7e-6 µm printed); in micrometres read as
+    metres it is 10^6 too rough. Both are refused; the right unit reads."""
+
+    from skisnow import ImplausibleValueError
+    from skisnow.micro import read_topography
+
+    rng = np.random.default_rng(1)
+    heights_m = 5e-6 * rng.standard_normal((32, 32))  # a µm-scale grind, in metres
+    path = tmp_path / "grind.npy"
+    np.save(path, heights_m)
+    ok = read_topography(path, pixel_size=1e-6, height_unit="m")
+    assert np.ptp(ok.heights) == pytest.approx(np.ptp(heights_m))
+    with pytest.raises(ImplausibleValueError, match="height-unit um"):
+        read_topography(path, pixel_size=1e-6, height_unit="um")
+    np.save(path, heights_m * 1e6)  # the same map in µm
+    with pytest.raises(ImplausibleValueError, match="height-unit m"):
+        read_topography(path, pixel_size=1e-6, height_unit="m")
