@@ -158,3 +158,22 @@ def test_heights_read_in_the_wrong_unit_are_refused_both_ways(tmp_path) -> None:
     np.save(path, heights_m * 1e6)  # the same map in µm
     with pytest.raises(ImplausibleValueError, match="height-unit m"):
         read_topography(path, pixel_size=1e-6, height_unit="m")
+
+
+def test_options_that_contradict_a_side_car_are_refused(tmp_path) -> None:
+    """A .npy with its side-car (pixel size, heights in m) read with another --pixel-um was read
+    with the option, silently: Sdq scales as 1/pixel, so a 1000x pixel gave a 1000x flatter
+    surface. Options equal to the side-car read; contradicting ones are refused."""
+    from skisnow.micro import make_topography, read_topography, roughness, write_topography
+
+    rng = np.random.default_rng(2)
+    topo = make_topography(2e-6 * rng.standard_normal((64, 64)), dx=1e-6, dy=1e-6)
+    path = write_topography(topo, tmp_path / "t.npy")
+    assert (tmp_path / "t.npy.json").is_file()
+    same = read_topography(path, pixel_size=1e-6, height_unit="m")
+    plain = read_topography(path)
+    assert same.dx == plain.dx == 1e-6
+    assert roughness(same, cutoff=None).Sdq == pytest.approx(roughness(plain, cutoff=None).Sdq)
+    for kw in ({"pixel_size": 1e-3}, {"pixel_size": 1e-6, "height_unit": "um"}):
+        with pytest.raises(InputError, match="contradict its side-car"):
+            read_topography(path, **kw)

@@ -188,7 +188,17 @@ def read_topography(
                 f"{name}: this is a .npz archive (zip), not a .npy array; rename it to .npz "
                 "(skisnow reads the 'heights', 'dx_m', 'dy_m' of its own .npz files)"
             )
-        sidecar = _read_sidecar(path) if pixel_size is None else None
+        sidecar = _read_sidecar(path)
+        if pixel_size is not None and sidecar is not None:
+            given = _pixel_pair(pixel_size)
+            if not np.allclose(given, sidecar, rtol=1e-6) or height_unit != "m":
+                raise InputError(
+                    f"{name}: the pixel size {given[0] * 1e6:g} × {given[1] * 1e6:g} µm "
+                    f"(--pixel-um) and height unit {height_unit!r} (--height-unit) contradict "
+                    f"its side-car {_sidecar(path).name} ({sidecar[0] * 1e6:g} × "
+                    f"{sidecar[1] * 1e6:g} µm, heights in m); drop the options or correct the "
+                    "side-car"
+                )
         if pixel_size is None and sidecar is None:
             raise InputError(
                 f"{name}: a {suffix} matrix carries no pixel size and has no {_sidecar(path).name} "
