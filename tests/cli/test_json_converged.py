@@ -45,3 +45,17 @@ def test_a_report_says_whether_its_solves_converged(capsys, tmp_path: Path, monk
     monkeypatch.setattr(skisnow.contact, "solve_contact", starved)
     code, doc = _doc(capsys, [*REPORT, "--out", str(tmp_path / "b")])
     assert code == 3 and doc["converged"] is False
+
+
+def test_metrics_say_their_beam_solves_converged(capsys, tmp_path: Path) -> None:
+    """``metrics`` of a ski solves the beam on the stone (solve_beam raises unless each solve
+    converged): ``true``; of a bench file it interpolates the bench and solves nothing:
+    ``null``."""
+    code, doc = _doc(capsys, ["metrics", "classic", "--json"])
+    assert code == 0 and doc["converged"] is True
+    bench = tmp_path / "b.csv"
+    assert main(["bench", "classic", "--mass-kg", "20,30,40,60,70",
+                 "--load-position-mm", "-80", "--out", str(bench)]) == 0  # fmt: skip
+    capsys.readouterr()
+    code, doc = _doc(capsys, ["metrics", str(bench), "--json"])
+    assert code == 0 and doc["converged"] is None

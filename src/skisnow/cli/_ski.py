@@ -9,7 +9,7 @@ import typer
 
 from skisnow._errors import InputError
 from skisnow._values import parse_values
-from skisnow.cli._app import app
+from skisnow.cli._app import app, report_converged
 from skisnow.cli._render import JsonOption, emit_json, print_table, progress_bar
 
 
@@ -233,7 +233,9 @@ def metrics_documents(
     load_position_mm = check_value(load_position_mm, "load_position", where="--load-position-mm")
     kw = {"body_mass": body_mass_kg, "load_position": load_position_mm * 1e-3}
     if source in SHIPPED_SKIS:
-        return [ski_metrics(source, **kw).as_field_units()]
+        docs = [ski_metrics(source, **kw).as_field_units()]
+        report_converged(True)  # solve_beam raises ConvergenceError unless each solve converged
+        return docs
     path = Path(source)
     if not path.exists():
         raise InputError(
@@ -241,7 +243,9 @@ def metrics_documents(
             "ski file (.json) or bench file (.csv or .parquet)"
         )
     if path.suffix.lower() == ".json":
-        return [ski_metrics(str(path), **kw).as_field_units()]
+        docs = [ski_metrics(str(path), **kw).as_field_units()]
+        report_converged(True)  # as above; from a bench nothing is solved: converged stays null
+        return docs
     data = read_bench(path)
     try:
         return [ski_metrics(data, ski=name, **kw).as_field_units() for name in data.skis]
