@@ -251,3 +251,20 @@ def test_the_command_refuses_bad_options(capsys: pytest.CaptureFixture[str]) -> 
     assert main(["calibrate", "--ski", "alpine"]) == 2
     assert "--ski must be classic or skate" in capsys.readouterr().err
     assert main(["calibrate", "--knots", "sparse"]) == 2
+
+
+def test_a_ski_file_says_when_its_ei_step_limit_is_exceeded(tmp_path: Path) -> None:
+    """The EI step limit is a hinge penalty of the fit, so a calibrated ski may exceed it: the
+    description must not state the limit as met next to a larger step (the shipped classic,
+    calibration_classic_v3: 8.50x between neighbouring knots against the limit 8x)."""
+    from skisnow.calibrate import EI_STEP_MAX
+
+    doc = json.loads(
+        (ROOT / "benchmarks" / "calibration" / "calibration_classic_v3.json").read_text()
+    )
+    log_ei = np.log(np.array(doc["ei_n_m2"]))  # its knots are the default ones
+    step = float(np.exp(np.max(np.abs(np.diff(log_ei)))))
+    assert step > EI_STEP_MAX
+    text = read_ski(cs.write_shipped(doc, tmp_path / "c.json")).description
+    assert f"{EI_STEP_MAX:g}x exceeded by {(step / EI_STEP_MAX - 1) * 100:.1f} %" in text
+    assert "exceeded by" in get_ski("classic").description  # the shipped file says so too
