@@ -379,6 +379,15 @@ def main() -> None:
         default=0.0,
         help="a patch under this fraction of its zone makes the zone's count wrong (sixth pass)",
     )
+    ap.add_argument(
+        "--free-mm",
+        type=float,
+        nargs=2,
+        action="append",
+        metavar=("FROM_MM", "TO_MM"),
+        help="with --param knots: optimise only the knots in these x ranges [mm] (repeatable;"
+        " the others stay at the first start's values; eighth pass)",
+    )
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--popsize", type=int, default=6)
     ap.add_argument("--sigma", type=float, default=0.03, help="start cloud, fraction of box")
@@ -435,6 +444,23 @@ def main() -> None:
                 log_ei = ei_bump_log(kind, ek0, w[:n_e0], w[-3:])
                 return np.concatenate([log_ei, inner(w[:-3])[n_e0:]])
 
+        if a.free_mm:  # eighth pass: the knots in the ranges free, the rest the first start's
+            if a.bump or a.ei_bump:
+                ap.error("--free-mm: not with --bump or --ei-bump")
+            ek, zk, pins = KNOTS[kind]
+            xs = np.concatenate([ek, [zk[k] for k in range(len(zk)) if k not in pins]])
+            mask = np.zeros(xs.size, dtype=bool)
+            for x0, x1 in a.free_mm:
+                mask |= (xs >= x0 * 1e-3 - 1e-9) & (xs <= x1 * 1e-3 + 1e-9)
+            full0 = starts[0].copy()
+            starts, lo, hi = [v[mask] for v in starts], lo[mask], hi[mask]
+            print(f"--free-mm: {int(mask.sum())} of {mask.size} parameters free")
+
+            def to_v(w: np.ndarray) -> np.ndarray:
+                v = full0.copy()
+                v[mask] = w
+                return v
+
     state = {"n": 0, "best": math.inf, "v": starts[0]}
     t0 = time.process_time()
     w0 = time.monotonic()
@@ -447,16 +473,20 @@ def main() -> None:
             rows = rows_of(kind, v)
         except Exception:  # no wax pocket, the load off the supports, ...
             return BAD
-        val = penalty(*errors(rows), cap=a.cap)
+        e_p = errors(rows)
+        val = penalty(*e_p, cap=a.cap)
         if val < state["best"]:
             state["best"], state["v"], state["w"] = val, v, w
             zones, n_ok, n = tally(rows)
             rec = {
                 "evaluation": state["n"], "cpu_s": round(time.process_time() - t0, 1),
-                "penalty": round(val, 4), "zones_within": zones, "of": len(rows),
+                "penalty": round(val, 4), "penalty_uncapped": round(penalty(*e_p), 4),
+                "zones_within": zones, "of": len(rows),
                 "numbers_within": n_ok, "numbers": n, "knots": a.knots, "seed": a.seed,
                 "param": a.param, "vector": [round(float(x), 6) for x in w],
             }  # fmt: skip
+            if a.free_mm:  # the whole ski vector too (the free knots' vector is "vector")
+                rec["ski_vector"] = [round(float(x), 6) for x in v]
             if feats:
                 rec["features"] = {k: round(x, 6) for k, x in feature_values(w).items()}
             with a.log.open("a") as fh:
@@ -495,7 +525,8 @@ def main() -> None:
                        "implied_shares": TOL.implied_shares},
         "fit": "benchmarks/fit_k22.py", "penalty": state["best"], "margin": MARGIN,
         "cap": a.cap if math.isfinite(a.cap) else None, "min_patch_frac": a.min_patch_frac,
-        "starts": a.start, "seed": a.seed, "popsize": a.popsize, "sigma": a.sigma,
+        "free_mm": a.free_mm, "starts": a.start, "seed": a.seed, "popsize": a.popsize,
+        "sigma": a.sigma,
         "evaluations": state["n"], "generations_run": state.get("generations", 0),
         "generations": state.get("generations", 0),
         "cpu_seconds": round(time.process_time() - t0, 1),

@@ -13,6 +13,14 @@ scaling, reference and loss weights, ``--lm-points`` points, early stopping afte
 parameters are kept, the starting ones included: the result is never worse on its held-out
 conditions than the network it started from. Writes ``DIR/SKI``; its metadata records the
 network it continued (``continued_from``). Evaluate with ``bench_network.py --models DIR``.
+
+``--rebench`` (issue 30, eighth pass): continue the same widths on the dense bench of a
+*different* ski of the same name (a refitted reproduction ski): the sha check is skipped, the
+network is moved into the new bench's frame (its output scaling and reference profile, computed
+as :func:`~skisnow.network.train_network` computes them; the output layer re-expressed so that
+the network still predicts the old ski's heights shifted by the change of the reference, the
+load-independent part of the change of ski) and continued; the metadata records
+``continued_from`` (with the old ``training_data_sha256``) and the new bench's sha256.
 """
 
 from __future__ import annotations
@@ -23,10 +31,47 @@ import os
 import time
 from pathlib import Path
 
+import numpy as np
 from bench_network import TRAINING_MASSES, TRAINING_POSITIONS
 
 from skisnow.bench import run_bench
 from skisnow.ski import get_ski
+
+
+def reframed(net0, bench, meta0):  # type: ignore[no-untyped-def]
+    """``net0`` in the frame (scaling, reference profile) ``train_network`` gives ``bench``
+    with ``net0``'s seed and options: the frame from a zero-step training, the output layer
+    re-expressed so that u_new = (s_old u_old + c_old - c_new) / s_new (u: the network's
+    scaled output, s and c the height scale and centre); the input scaling must agree."""
+    from skisnow.network import BlockNetwork, train_network
+
+    opts = meta0["options"]
+    frame = train_network(
+        bench,
+        architecture=net0.architecture,
+        seed=meta0["seed"],
+        validation_fraction=opts["validation_fraction"],
+        adam_steps=0,
+        lm_steps=0,
+        reference_profile=opts["reference_profile"],
+        ensemble=len(net0.members),
+    )
+    s0, s1 = net0.scaling, frame.scaling
+    same = ("x_center", "x_scale", "mass_center", "mass_scale", "position_center",
+            "position_scale")  # fmt: skip
+    if any(getattr(s0, k) != getattr(s1, k) for k in same):
+        raise SystemExit("--rebench: the new bench's inputs are not scaled as the old one's")
+    a = s0.height_scale / s1.height_scale
+    b = (s0.height_center - s1.height_center) / s1.height_scale
+    members = []
+    for member in net0.members:
+        lay = {n: (np.asarray(la.weight), np.asarray(la.bias)) for n, la in member.layers()}
+        w, c = lay["prediction"]
+        lay["prediction"] = (a * w, a * c + b)
+        members.append(BlockNetwork.from_layer_arrays(net0.architecture, lay))
+    return dataclasses.replace(
+        net0, scaling=s1, reference=frame.reference, domain=frame.domain, members=tuple(members)
+    )
 
 
 def main() -> None:
@@ -41,6 +86,11 @@ def main() -> None:
     ap.add_argument("--widen-seed", type=int, default=0)
     ap.add_argument("--out", required=True)
     ap.add_argument("--log", default=None)
+    ap.add_argument(
+        "--rebench",
+        action="store_true",
+        help="the ski changed: continue on its new dense bench (eighth pass)",
+    )
     args = ap.parse_args()
 
     from skisnow.network import (
@@ -57,7 +107,9 @@ def main() -> None:
     opts = meta0["options"]
     bench = run_bench(get_ski(args.ski), masses=TRAINING_MASSES, load_positions=TRAINING_POSITIONS)
     if bench_sha256(bench) != meta0["training_data_sha256"]:
-        raise SystemExit(f"{args.ski}: the network was not trained on this dense bench")
+        if not args.rebench:
+            raise SystemExit(f"{args.ski}: the network was not trained on this dense bench")
+        net0 = reframed(net0, bench, meta0)
     wide = widen_network(net0, args.widths, seed=args.widen_seed)
     log = open(args.log, "a") if args.log else None  # noqa: SIM115
     t0 = time.perf_counter()
@@ -103,9 +155,11 @@ def main() -> None:
             "status",
             "training_time_s",
             "validation_errors",
+            "training_data_sha256",
         )
     }
     meta["continued_from"]["widen_seed"] = args.widen_seed
+    meta["continued_from"]["rebench"] = args.rebench
     meta["training_time_s"] = meta0["training_time_s"] + net.metadata["training_time_s"]
     net = dataclasses.replace(net, metadata=meta)
     Path(args.out).mkdir(parents=True, exist_ok=True)
