@@ -388,6 +388,18 @@ def main() -> None:
         help="with --param knots: optimise only the knots in these x ranges [mm] (repeatable;"
         " the others stay at the first start's values; eighth pass)",
     )
+    ap.add_argument(
+        "--best-of",
+        type=Path,
+        help="a --free-mm run's log: its best ski replaces the first start (its knots kept;"
+        " with --minutes 0 --powell-minutes 0 writes that ski's record)",
+    )
+    ap.add_argument(
+        "--zone-weight",
+        type=float,
+        default=0.0,
+        help="add this per zone not within (the count the shipping rule ranks on; eighth pass)",
+    )
     ap.add_argument("--seed", type=int, default=0)
     ap.add_argument("--popsize", type=int, default=6)
     ap.add_argument("--sigma", type=float, default=0.03, help="start cloud, fraction of box")
@@ -419,6 +431,9 @@ def main() -> None:
             pins = tuple(int(np.argmin(np.abs(np.array(zk) - dz[p]))) for p in dpins)
             KNOTS[kind] = (tuple(ek), tuple(zk), pins)
         starts = [record_vector(kind, json.loads(Path(s).read_text())) for s in a.start]
+        if a.best_of:  # eighth pass: the first start replaced by the best ski of a --free-mm log
+            lines = [json.loads(t) for t in a.best_of.read_text().splitlines() if t.strip()]
+            starts[0] = np.array(min(lines, key=lambda r: r["penalty"])["ski_vector"])
         lo, hi = bounds(kind)
         lo = np.minimum(lo, np.min(starts, axis=0))
         hi = np.maximum(hi, np.max(starts, axis=0))
@@ -475,6 +490,8 @@ def main() -> None:
             return BAD
         e_p = errors(rows)
         val = penalty(*e_p, cap=a.cap)
+        if a.zone_weight:  # eighth pass: each zone missed costs this much more
+            val += a.zone_weight * (len(rows) - tally(rows)[0])
         if val < state["best"]:
             state["best"], state["v"], state["w"] = val, v, w
             zones, n_ok, n = tally(rows)
@@ -525,7 +542,8 @@ def main() -> None:
                        "implied_shares": TOL.implied_shares},
         "fit": "benchmarks/fit_k22.py", "penalty": state["best"], "margin": MARGIN,
         "cap": a.cap if math.isfinite(a.cap) else None, "min_patch_frac": a.min_patch_frac,
-        "free_mm": a.free_mm, "starts": a.start, "seed": a.seed, "popsize": a.popsize,
+        "free_mm": a.free_mm, "zone_weight": a.zone_weight, "best_of": str(a.best_of),
+        "starts": a.start, "seed": a.seed, "popsize": a.popsize,
         "sigma": a.sigma,
         "evaluations": state["n"], "generations_run": state.get("generations", 0),
         "generations": state.get("generations", 0),
