@@ -86,7 +86,13 @@ class Scorer:
         ex, de = prof.ex, prof.ei_determined
         self.ex_mid = ex[de & (ex >= -0.45) & (ex <= 0.40)]
         self.ei_t = true.stiffness(self.ex_mid)
-        self.p_mat, self.target = self.pr.penalty(self.lam)
+        self.at(self.lam)
+
+    def at(self, lam: float) -> Scorer:
+        """Score (cost, GCV, case-CV) and refit (:func:`refit`) at ``lam`` from now on."""
+        self.lam = lam
+        self.p_mat, self.target = self.pr.penalty(lam)
+        return self
 
     def z0_dev(self, p: np.ndarray) -> np.ndarray:
         _, th_z = self.pr.split(p)
@@ -136,6 +142,8 @@ def posterior_modes(sc: Scorer, k: int) -> list[tuple[np.ndarray, float]]:
 
 
 def refit(sc: Scorer, p0: np.ndarray, lam_z: float | None = None) -> tuple:
+    """The fit's own refit (its problem, at ``sc.lam``; z0's smoothness ``lam_z`` if given)
+    started at ``p0``."""
     pr = sc.pr
     if lam_z is not None:
         pr.penalty = lambda lam: (pr.penalty_matrix(lam, lam_z), pr.penalty_target(lam, lam_z))

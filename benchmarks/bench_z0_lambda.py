@@ -6,8 +6,8 @@ Run:  nice -n 10 uv run python benchmarks/bench_z0_lambda.py --store ~/.cache/sk
 Issue 25, ninth pass (the estimator-side test after ``bench_z0_basins.py``). The default fit
 chooses λ by GCV on the Gauss–Newton linearisation at *one* fit (at the grid's middle λ); the z0
 errors of the shop fits are mostly a bowl (a quadratic z0 mode) whose sign follows the chosen λ.
-Here each cached fit (``bench_band_variants.py --fit``) is refitted by
-:func:`skisnow.identify._fit.fit_bench` at every λ of the default grid, started at the fit, and
+Here each cached fit (``bench_band_variants.py --fit``) is refitted
+(``bench_z0_basins.refit``) at every λ of the default grid, started at the fit, and
 each criterion is evaluated at that λ's *own* fit: GCV (Craven & Wahba 1979), the Laplace
 evidence (MacKay 1992), leave-one-load-case-out CV with the one-standard-error rule (Rice &
 Silverman 1991); errors as in ``bench_z0_basins.py`` (the fit's determined stations and band
@@ -33,11 +33,10 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).parent))
 from bench_band_variants import STORE
-from bench_z0_basins import Scorer, load
+from bench_z0_basins import Scorer, load, refit
 
 from skisnow.identify._bands import _evidence
 from skisnow.identify._cv import case_cv, choose
-from skisnow.identify._fit import fit_bench
 from skisnow.identify._result import DEFAULT_LAMBDAS
 
 
@@ -58,12 +57,7 @@ def main() -> None:
         rows = []
         for lam in DEFAULT_LAMBDAS:
             t0 = time.process_time()
-            f = fit_bench(pr, pr.cases, pr.nodes, initial=None, start_parameters=x0,
-                          regularisation=lam, lambdas=(lam,), max_nfev=60,
-                          continuation=(1 / 3, 2 / 3), say=lambda _m: None)  # fmt: skip
-            sol = f.solution
-            sc.lam = lam
-            sc.p_mat, sc.target = pr.penalty(lam)
+            sol = refit(sc.at(lam), x0)
             pen = (sc.p_mat, sc.target)
             r = sc.row(sol)
             r.update(lam=lam, evidence=float(_evidence(sol, pen, lam)[1]),

@@ -4,7 +4,7 @@ Run:  nice -n 10 uv run python benchmarks/bench_z0_penalty.py --store ~/.cache/s
           1002:5 1002:10 1003:10 issue25:10 20:5 22:5 24:5
 
 On shop fits cached by ``bench_band_variants.py --fit``: the fit's own refit
-(:func:`skisnow.identify._fit.fit_bench`, the fit's problem) started at the projected truth
+(``bench_z0_basins.refit``, the fit's problem) started at the projected truth
 (``bench_z0_basins.py``'s ``truth`` row), under penalties that differ only in one term:
 
 * ``default``: the fit's λ, λ₁ = 1 (the trend term), the ridges on log EI and z0;
@@ -31,11 +31,10 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).parent))
 from bench_band_variants import STORE
-from bench_z0_basins import Scorer, load
+from bench_z0_basins import Scorer, load, refit
 from bench_z0_linear_error import truth_parameters
 
 import skisnow.identify._model as model
-from skisnow.identify._fit import fit_bench
 
 VARIANTS = {
     "default": (1.0, 1.0),
@@ -63,15 +62,12 @@ def main() -> None:
         for label, (scale, l1) in VARIANTS.items():
             model._LAMBDA_1 = l1
             t0 = time.process_time()
+            sc.lam = lam * scale  # the refit's λ; the scores' penalty after λ₁ is restored
             try:
-                f = fit_bench(pr, pr.cases, pr.nodes, initial=None, start_parameters=p_t,
-                              regularisation=lam * scale, lambdas=(lam * scale,), max_nfev=60,
-                              continuation=(1 / 3, 2 / 3), say=lambda _m: None)  # fmt: skip
+                sol = refit(sc, p_t)
             finally:
                 model._LAMBDA_1 = lam1
-            sc.lam = lam * scale
-            sc.p_mat, sc.target = pr.penalty(lam * scale)
-            r = sc.row(f.solution)
+            r = sc.at(lam * scale).row(sol)
             print(f"| {name} | {noise} | {lam:g} | {label} | {r['z0_rms']:.1f} | "
                   f"{r['ei_rms']:.2f} | {r['misfit']:.4f} | {time.process_time() - t0:.1f} |",
                   flush=True)  # fmt: skip
