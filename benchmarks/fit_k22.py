@@ -61,7 +61,7 @@ import dataclasses
 import json
 import math
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from pathlib import Path
 
 import numpy as np
@@ -119,14 +119,22 @@ FEATURES = (
 )
 
 
+def pinned_knots(
+    kind: str, ek: Sequence[float], zk: Sequence[float]
+) -> tuple[tuple[float, ...], tuple[float, ...], tuple[int, int]]:
+    """(EI knots, camber knots, the camber knots nearest the default knots' two pins): a
+    :data:`skisnow.calibrate.KNOTS` entry."""
+    _, dz, dpins = SPLINE_KNOTS[kind]
+    pins = tuple(int(np.argmin(np.abs(np.asarray(zk) - dz[p]))) for p in dpins)
+    return tuple(ek), tuple(zk), pins  # type: ignore[return-value]
+
+
 def feature_knots(kind: str) -> tuple[tuple[float, ...], tuple[float, ...], tuple[int, int]]:
     """(EI knots every 10 mm, camber knots every 5 mm, the two pinned camber knots)."""
     x_tail, x_tip = SPLINE_ENDS[kind]
     ek = np.round(np.linspace(x_tail, x_tip, round((x_tip - x_tail) / 0.01) + 1), 6)
     zk = np.round(np.linspace(x_tail, x_tip, round((x_tip - x_tail) / 0.005) + 1), 6)
-    _, dz, dpins = SPLINE_KNOTS[kind]
-    pins = tuple(int(np.argmin(np.abs(zk - dz[p]))) for p in dpins)
-    return tuple(ek), tuple(zk), pins  # type: ignore[return-value]
+    return pinned_knots(kind, ek, zk)
 
 
 def feature_bounds() -> tuple[np.ndarray, np.ndarray]:
@@ -426,10 +434,7 @@ def main() -> None:
             KNOTS.update(DENSE_KNOTS)
         elif a.knots == "record":  # the first start's knots, the default knots' two pins
             doc = json.loads(Path(a.start[0]).read_text())
-            ek, zk = doc["ei_knots_m"], doc["camber_knots_m"]
-            _, dz, dpins = SPLINE_KNOTS[kind]
-            pins = tuple(int(np.argmin(np.abs(np.array(zk) - dz[p]))) for p in dpins)
-            KNOTS[kind] = (tuple(ek), tuple(zk), pins)
+            KNOTS[kind] = pinned_knots(kind, doc["ei_knots_m"], doc["camber_knots_m"])
         starts = [record_vector(kind, json.loads(Path(s).read_text())) for s in a.start]
         if a.best_of:  # eighth pass: the first start replaced by the best ski of a --free-mm log
             lines = [json.loads(t) for t in a.best_of.read_text().splitlines() if t.strip()]

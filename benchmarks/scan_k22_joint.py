@@ -22,11 +22,10 @@ import json
 from pathlib import Path
 
 import numpy as np
-from fit_k22 import errors, penalty, rows_of, tally
+from fit_k22 import errors, penalty, pinned_knots, rows_of, tally
 
 from skisnow.calibrate import KNOTS, make_ski, record_vector
 from skisnow.paper import CAPTIONS, solve_caption_case
-from skisnow.ski import SPLINE_KNOTS
 
 
 def rear_centroid_mm(ski, mass: float, position: float) -> float:  # type: ignore[no-untyped-def]
@@ -50,10 +49,7 @@ def main() -> None:
     da, db = (json.loads(p.read_text()) for p in (args.a, args.b))
     if da["ei_knots_m"] != db["ei_knots_m"] or da["camber_knots_m"] != db["camber_knots_m"]:
         raise SystemExit("the two records must have the same knots")
-    ek, zk = da["ei_knots_m"], da["camber_knots_m"]
-    _, dz, dpins = SPLINE_KNOTS["classic"]
-    pins = tuple(int(np.argmin(np.abs(np.array(zk) - dz[p]))) for p in dpins)
-    KNOTS["classic"] = (tuple(ek), tuple(zk), pins)
+    KNOTS["classic"] = pinned_knots("classic", da["ei_knots_m"], da["camber_knots_m"])
     va, vb = record_vector("classic", da), record_vector("classic", db)
     print("| t | zones | numbers | penalty cap 2 | uncapped | within (A 4/7/7, B, C) "
           "| rear centroid A / B on the stone [mm] |")  # fmt: skip
