@@ -43,6 +43,7 @@ __all__ = [
     "check_memory",
     "check_option_values",
     "check_value",
+    "column_swap_hint",
     "implausible_allowed",
     "positive_finite",
 ]
@@ -140,13 +141,16 @@ def check_array(
     allow: bool | None = None,
     check_span: bool = True,
     impossible: type[InputError] = InputError,
+    cause: str = "",
 ) -> np.ndarray:
     """Check a column of values in the field unit of ``quantity`` (see :func:`check_value`).
 
     The first offending entry is named with ``row_label(i)`` (e.g. ``"line 12"``). With
     ``check_span`` a column whose spread is below the quantity's ``min_span`` is refused as a
     probable unit slip (heights in metres in a millimetre column). ``impossible`` is the error
-    raised for impossible values (readers pass :class:`~skisnow.FileFormatError`).
+    raised for impossible values (readers pass :class:`~skisnow.FileFormatError`). ``cause``
+    (e.g. from :func:`column_swap_hint`) is named first in an implausibility message, before
+    the unit probably meant.
     """
     q = QUANTITIES[quantity] if isinstance(quantity, str) else quantity
     v = np.asarray(values, dtype=np.float64)
@@ -165,7 +169,7 @@ def check_array(
     if out.size:
         i = int(out[0])
         guess = q.guess_unit(float(v[i]))
-        hint = f"; was the column given in {guess}?" if guess else ""
+        hint = cause + (f"; was the column given in {guess}?" if guess else "")
         raise ImplausibleValueError(
             f"{where}, {label(i)}: {_value(v[i], q)} is an implausible {q.name} (plausible: "
             f"{q.describe_plausible()}{hint}). If you really mean it, pass {OVERRIDE_HINT}."
@@ -174,13 +178,64 @@ def check_array(
         span = float(v.max() - v.min())
         if span < q.min_span:
             guess = q.guess_unit(span, span=True)
-            hint = f"; the values look like {guess}, not {q.unit}" if guess else ""
+            hint = cause + (f"; the values look like {guess}, not {q.unit}" if guess else "")
             raise ImplausibleValueError(
                 f"{where}: the {q.name} spans only {_fmt(span)} {q.unit} over {v.size} rows "
                 f"(on a ski it spans at least {q.min_span:g} {q.unit}{hint}). If you really "
                 f"mean it, pass {OVERRIDE_HINT}."
             )
     return v
+
+
+def column_swap_hint(
+    x_mm: np.ndarray,
+    height_mm: np.ndarray,
+    profiles: list[np.ndarray] | None = None,
+    *,
+    x_name: str = "x_mm",
+    height_name: str = "height_mm",
+) -> str:
+    """A hint that the position and height columns of a profile table were swapped, or ``""``.
+
+    The data fit a swap when the height column looks like positions along a ski (it increases
+    strictly within every profile and spans at least the ``x`` quantity's ``min_span``) and the
+    position column looks like camber heights (every value within the ``camber_height``
+    plausible range, spread below ``x``'s ``min_span``).
+
+    Parameters
+    ----------
+    x_mm, height_mm
+        the columns as read (field unit mm).
+    profiles
+        row indices of each profile (each must be ordered by x); ``None``: one profile.
+    x_name, height_name
+        the column names used in the hint.
+
+    Returns
+    -------
+    str
+        ``"; the columns may be swapped: ..."`` (to pass as ``cause`` to :func:`check_array`),
+        or ``""`` when the data do not fit that explanation.
+    """
+    x = np.asarray(x_mm, dtype=np.float64)
+    h = np.asarray(height_mm, dtype=np.float64)
+    if x.size < 2 or x.shape != h.shape or not (np.all(np.isfinite(x)) and np.all(np.isfinite(h))):
+        return ""
+    qx, qh = QUANTITIES["x"], QUANTITIES["camber_height"]
+    lo, hi = qh.plausible
+    if not (np.all((x >= lo) & (x <= hi)) and np.ptp(x) < qx.min_span):
+        return ""
+    groups = [np.arange(x.size)] if profiles is None else profiles
+    for idx in groups:
+        hp = h[np.asarray(idx)]
+        if hp.size < 2 or not np.all(np.diff(hp) > 0) or np.ptp(hp) < qx.min_span:
+            return ""
+    return (
+        f"; the columns may be swapped: {height_name!r} increases along every profile over "
+        f"{_fmt(float(np.ptp(h)))} mm like positions on a ski, and {x_name!r} stays within "
+        f"{_fmt(float(x.min()))}..{_fmt(float(x.max()))} mm like camber heights (check the "
+        "header's column order)"
+    )
 
 
 def check_option_values(values: np.ndarray, quantity: str | Quantity, option: str) -> np.ndarray:

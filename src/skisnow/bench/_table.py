@@ -150,8 +150,13 @@ def _check_plausible(out: pd.DataFrame, where: str, label: Any) -> None:
     """Every column within what is possible and plausible for a ski on a camber bench (heights
     in metres in ``height_mm``, x in metres, a 20 m ski, masses in grams are refused with the
     unit probably meant; ``--allow-implausible`` accepts them)."""
-    from skisnow._checks import check_array, implausible_allowed
+    from skisnow._checks import check_array, column_swap_hint, implausible_allowed
 
+    profiles = [
+        np.sort(i)
+        for i in out.groupby(["ski", "mass_kg", "load_position_mm"], sort=False).indices.values()
+    ]
+    swap = column_swap_hint(out["x_mm"].to_numpy(), out["height_mm"].to_numpy(), profiles)
     for col, quantity in _QUANTITY.items():
         check_array(
             out[col].to_numpy(),
@@ -159,6 +164,7 @@ def _check_plausible(out: pd.DataFrame, where: str, label: Any) -> None:
             where=f"{where}, column {col!r}",
             row_label=label,
             impossible=FileFormatError,
+            cause=swap if col in ("x_mm", "height_mm") else "",
         )
     if implausible_allowed():
         return

@@ -94,11 +94,12 @@ def read_profile(path: str | Path, *, resample: bool = True) -> tuple[np.ndarray
     """
     path = Path(path)
     values, line = _read_columns(path, PROFILE_COLUMNS, "profile")
-    from skisnow._checks import check_array
+    from skisnow._checks import check_array, column_swap_hint
 
+    swap = column_swap_hint(values["x_mm"], values["height_mm"])
     for col, quantity in (("x_mm", "x"), ("height_mm", "camber_height")):
         check_array(values[col], quantity, where=f"{path}, column {col}", row_label=line,
-                    impossible=FileFormatError)  # fmt: skip
+                    impossible=FileFormatError, cause=swap)  # fmt: skip
     x, h = values["x_mm"] * 1e-3, values["height_mm"] * 1e-3
     if x.size < 8:
         raise FileFormatError(f"{path}: a profile needs at least 8 rows, found {x.size}")
