@@ -281,6 +281,31 @@ def test_tipping_load_raises_unsupported_load() -> None:
         solve_contact(x, ski_like(x), **_kw(load_position=-0.995))
 
 
+def test_tipping_message_names_the_tipping_end() -> None:
+    x = cells(256, -1.0, 1.0)
+    with pytest.raises(UnsupportedLoadError, match="tip over that end"):
+        solve_contact(x, ski_like(x), **_kw(load_position=-0.995))
+
+
+def test_full_contact_to_both_ends_is_refused_naming_its_cause() -> None:
+    # trust audit finding 16: a centred flat punch is in contact end to end; it does not tip.
+    # The refusal stays (the contact zone is cut by the profile's ends), its message says why.
+    x = cells(256, -0.3, 0.3)
+    with pytest.raises(UnsupportedLoadError, match="both ends") as flat:
+        solve_contact(x, np.zeros_like(x), **_kw(load_position=0.0))
+    assert "the profile is flat" in str(flat.value) and "tip over" not in str(flat.value)
+    # a curved profile pressed down to its ends by a high load on soft snow
+    h = 5e-4 * (x / 0.3) ** 2
+    with pytest.raises(UnsupportedLoadError, match="both ends") as high:
+        solve_contact(x, h, **_kw(load=2000.0, load_position=0.0, modulus=5e6))
+    msg = str(high.value)
+    relief = f"the load closes its relief ({np.ptp(h) * 1e6:.3g} µm"  # θ = 0: centred, symmetric
+    assert relief in msg and "tip over" not in msg
+    # the same profile under a light load is solved (contact away from the ends)
+    sol = solve_contact(x, h, **_kw(load=300.0, load_position=0.0, modulus=1e8))
+    assert not (sol.contact_along[0] or sol.contact_along[-1])
+
+
 def test_convergence_error_on_request() -> None:
     x = cells(256, -1.0, 1.0)
     sol = solve_contact(x, ski_like(x), max_iter=2, **_kw())

@@ -405,15 +405,49 @@ def _solution(problem: ContactProblem, result: PolonskyKeerResult) -> ContactSol
 
 
 def _check_ends(sol: ContactSolution) -> None:
-    """Raise :class:`~skisnow.UnsupportedLoadError` when the contact reaches an end station."""
+    """Raise :class:`~skisnow.UnsupportedLoadError` when the contact reaches an end station.
+
+    The message names the cause that fits the solution first: contact at BOTH ends means the
+    whole profile is pressed down (a flat profile, or a load high enough to close its relief),
+    not a tipping ski; contact at one end means the load sits too close to that end (the ski
+    would tip over it) when the load point lies on that end's half, else a profile cut too short.
+    """
     along = sol.contact_along
-    if along[0] or along[-1]:
-        x = sol.x
-        end = "tail (first station)" if along[0] else "tip (last station)"
-        xe = x[0] if along[0] else x[-1]
-        raise UnsupportedLoadError(
-            f"the contact reaches the {end} of the profile at x = {xe * 1e3:.1f} mm: the "
-            f"profile cannot carry W = {sol.load:.4g} N at x_m = {sol.load_position * 1e3:.1f} "
-            "mm within its length (the ski would tip over that end, or the profile is cut too "
-            "short); move the load toward the balance point or extend the profile"
+    if not (along[0] or along[-1]):
+        return
+    x = sol.x
+    what = f"W = {sol.load:.4g} N at x_m = {sol.load_position * 1e3:.1f} mm"
+    if along[0] and along[-1]:
+        h = np.asarray(sol.height, dtype=np.float64)
+        h = h if h.ndim == 1 else h.min(axis=1)
+        relief = float(np.ptp(h - sol.rotation * (x - sol.load_position)))
+        flat = relief <= 1e-9
+        why = (
+            "the profile is flat (in full contact at any load)"
+            if flat
+            else f"the load closes its relief ({relief * 1e6:.3g} µm over its length after the "
+            f"rotation, indentation δ = {sol.translation * 1e6:.3g} µm)"
         )
+        raise UnsupportedLoadError(
+            f"the contact reaches both ends of the profile (x = {x[0] * 1e3:.1f} and "
+            f"{x[-1] * 1e3:.1f} mm) under {what}: {why}, so the whole profile is in contact and "
+            "the contact zone is cut by the profile's ends, not found by the solve. Give a "
+            "profile that extends past the contact (a ski's camber rises toward its ends)"
+            + ("" if flat else " or a lower load")
+        )
+    at_tail = bool(along[0])
+    end = "tail (first station)" if at_tail else "tip (last station)"
+    xe = x[0] if at_tail else x[-1]
+    mid = 0.5 * (x[0] + x[-1])
+    near = sol.load_position <= mid if at_tail else sol.load_position >= mid
+    cause = (
+        "the ski would tip over that end, or the profile is cut too short; move the load toward "
+        "the balance point or extend the profile"
+        if near
+        else "the profile is cut too short on that side (or its height there is too low); "
+        "extend the profile"
+    )
+    raise UnsupportedLoadError(
+        f"the contact reaches the {end} of the profile at x = {xe * 1e3:.1f} mm: the profile "
+        f"cannot carry {what} within its length ({cause})"
+    )
