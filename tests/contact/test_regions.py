@@ -150,7 +150,9 @@ def test_region_metrics_are_continuous_in_the_load(ski, position, modulus, ski_m
             assert abs(rb.force - ra.force) <= dw + cell_loads, (ra.name, a.mass)
             assert abs(rb.load_share - ra.load_share) <= (dw + cell_loads) / (a.mass * 9.8)
             dp = np.abs(pb - pa)[idx == k]
-            assert abs(rb.max_pressure - ra.max_pressure) <= dp.max() + 1e-9
+            # the pressure field is 0 where a region has no contact (its peak: NaN, no value)
+            peak_a, peak_b = np.nan_to_num(ra.max_pressure), np.nan_to_num(rb.max_pressure)
+            assert abs(peak_b - peak_a) <= dp.max() + 1e-9
     assert len(merged) == 111
 
 

@@ -49,9 +49,14 @@ def test_records_balance_the_load_and_scale_with_body_weight(fleet) -> None:
             assert sol.total_force == pytest.approx(factor * 70 * 9.80665, rel=1e-6)
         # more load, more contact
         assert rec["full_total_length_mm"] > rec["half_total_length_mm"]
-        assert rec["full_kick_contact"] == (rec["full_kick_length_mm"] > 0)
-    skate = cmp.records()[1]
-    assert skate["full_kick_length_mm"] == 0.0  # a skate ski has no kick zone
+    classic, skate = cmp.records()[:2]
+    assert classic["full_kick_contact"] == (classic["full_kick_length_mm"] > 0)
+    # a skate ski has no kick zone: no value in any kick-zone column (NaN; JSON null)
+    for load in ("half", "full"):
+        assert skate[f"{load}_kick_contact"] is None
+        for q in ("length_mm", "area_cm2", "mean_pressure_kpa", "peak_pressure_kpa",
+                  "load_share"):  # fmt: skip
+            assert np.isnan(skate[f"{load}_kick_{q}"]), q
 
 
 @pytest.mark.parametrize("name", list(CRITERIA))

@@ -55,9 +55,10 @@ class Region:
 
     ``start``/``end`` are the region's bounds on the ski [m] (``-inf``/``+inf`` at the tail and
     the tip), fixed by the ski; ``contact_start``/``contact_end`` the outer cell edges of the
-    contact inside it (NaN when none). ``mean_pressure`` is NaN without contact; ``force``,
-    ``load_share``, ``max_pressure`` and ``penetration`` are NaN when the footprint carries no
-    load data (a contact mask only, e.g. the Breitschädel estimate).
+    contact inside it (NaN when none). ``mean_pressure``, ``max_pressure`` and ``penetration``
+    are NaN without contact (no value: JSON null, "—" in a table); ``force`` and
+    ``load_share`` are NaN when the footprint carries no load data (a contact mask only, e.g.
+    the Breitschädel estimate), and so are the pressures.
     """
 
     name: str
@@ -265,10 +266,11 @@ def footprint(
         # the values a boolean mask would pick, in the same order, so the same sums to the last
         # bit, without a pass over the whole ski per array
         if n == 0:
+            # no contact: nothing carried (0), no pressure or penetration to give (NaN)
             zero = 0.0 if has_load else float("nan")
             return {"length": 0.0, "area": 0.0, "force": zero, "load_share": zero,
-                    "mean_pressure": float("nan"), "max_pressure": zero,
-                    "penetration": 0.0 if penetration is not None else float("nan")}  # fmt: skip
+                    "mean_pressure": float("nan"), "max_pressure": float("nan"),
+                    "penetration": float("nan")}  # fmt: skip
         ar = float(a[sel].sum())
         fo = float(f[sel].sum()) if has_load else float("nan")
         return {

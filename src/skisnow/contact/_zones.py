@@ -56,7 +56,12 @@ REGION_NAMES = ("rear_glide", "kick_zone", "front_glide")
 
 @dataclass(frozen=True, kw_only=True)
 class Zone:
-    """Metrics of one zone (SI). Pressures are NaN where not defined (empty zone, Breitschädel)."""
+    """Metrics of one zone (SI).
+
+    A zone without contact has length, area, force and load share 0 and no pressure or
+    penetration: ``mean_pressure``, ``max_pressure`` and ``penetration`` are NaN there (JSON
+    null, an empty CSV cell, "—" in a table), as they are without load data (Breitschädel).
+    """
 
     name: str
     start: float
@@ -109,7 +114,7 @@ class ZoneMetrics:
         if name in ("rear", "middle", "front", "total", "kick"):
             return getattr(self, name)
         if name in REGION_NAMES:
-            return self.regions.get(name) or _empty_zone(name, pressures=True)
+            return self.regions.get(name) or _empty_zone(name)
         raise KeyError(f"{name!r}: zones are rear, middle, front, total, kick, "
                        f"{', '.join(REGION_NAMES)}")  # fmt: skip
 
@@ -230,7 +235,7 @@ def _between(
     return patches(mask & inside)
 
 
-def _empty_zone(name: str, *, pressures: bool) -> Zone:
+def _empty_zone(name: str) -> Zone:
     return Zone(
         name=name,
         start=float("nan"),
@@ -239,10 +244,10 @@ def _empty_zone(name: str, *, pressures: bool) -> Zone:
         area=0.0,
         force=0.0,
         load_share=0.0,
-        mean_pressure=float("nan"),
-        max_pressure=0.0 if pressures else float("nan"),
+        mean_pressure=float("nan"),  # no contact: no pressure to average, none to peak
+        max_pressure=float("nan"),
         patches=0,
-        penetration=0.0 if pressures else float("nan"),
+        penetration=float("nan"),
         intervals=(),
     )
 
@@ -259,7 +264,7 @@ def _zone(
     total_force: float,
 ) -> Zone:
     if not runs:
-        return _empty_zone(name, pressures=line_force is not None)
+        return _empty_zone(name)
 
     def picked(values: np.ndarray) -> np.ndarray:
         # the stations of the runs in order: the same contiguous values a boolean mask would

@@ -69,13 +69,17 @@ def fleet_section(comparison: Any, *, criterion: str = "mean-pressure") -> Secti
         ("stiffness_n_per_mm", "stiffness [N/mm]"),
     ):
         rows.append([label, *[r[key] for r in records]])
-    per_load = [(f"{z}_length_mm", f"{z} length [mm]") for z in ("rear", "front", "kick", "total")]
+    # the kick-zone rows only when a ski of the fleet has a kick zone (a skate ski's: "—")
+    kick = any(r["full_kick_contact"] is not None for r in records)
+    zones = ("rear", "front", "kick", "total") if kick else ("rear", "front", "total")
+    per_load = [(f"{z}_length_mm", f"{z} length [mm]") for z in zones]
     per_load += [
         ("total_mean_pressure_kpa", "mean p [kPa]"),
         ("total_peak_pressure_kpa", "peak p [kPa]"),
         ("rear_load_share", "rear load share"),
-        ("kick_load_share", "kick-zone load share"),
     ]
+    if kick:
+        per_load.append(("kick_load_share", "kick-zone load share"))
     for load, tag in (("half", "½ BW"), ("full", "1 BW")):
         for key, label in per_load:
             rows.append([f"{tag} {label}", *[r[f"{load}_{key}"] for r in records]])

@@ -59,7 +59,12 @@ class FleetEntry:
         return column_interval(self.intervals, column)
 
     def record(self) -> dict[str, Any]:
-        """One flat record in field units (mm, cm², kPa, kg, N/mm) — a row of the table."""
+        """One flat record in field units (mm, cm², kPa, kg, N/mm) — a row of the table.
+
+        Where there is no value it is NaN (JSON null, an empty CSV cell, "—" in a table): the
+        pressures of a zone without contact, and every kick-zone column (``kick_contact``:
+        ``None``) of a ski without a kick zone.
+        """
         m = self.metrics
         rec: dict[str, Any] = {
             "ski": self.ski.label,
@@ -73,17 +78,20 @@ class FleetEntry:
             "closing_load_kg": m.closing_load,
             "stiffness_n_per_mm": m.stiffness * 1e-3,
         }
+        nan = float("nan")
         for load in _LOADS:
             z = self.cases[load].zones
+            kick = z.kick_zone is not None  # a skate ski has no kick zone: no values there
             for name in _ZONES:
                 zone = z[name]
                 p = f"{load}_{name}"
-                rec[f"{p}_length_mm"] = zone.length * 1e3
-                rec[f"{p}_area_cm2"] = zone.area * 1e4
+                none = name == "kick" and not kick
+                rec[f"{p}_length_mm"] = nan if none else zone.length * 1e3
+                rec[f"{p}_area_cm2"] = nan if none else zone.area * 1e4
                 rec[f"{p}_mean_pressure_kpa"] = zone.mean_pressure * 1e-3
                 rec[f"{p}_peak_pressure_kpa"] = zone.max_pressure * 1e-3
-                rec[f"{p}_load_share"] = zone.load_share
-            rec[f"{load}_kick_contact"] = z["kick"].length > 0
+                rec[f"{p}_load_share"] = nan if none else zone.load_share
+            rec[f"{load}_kick_contact"] = bool(z["kick"].length > 0) if kick else None
         return rec
 
 
