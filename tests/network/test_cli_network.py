@@ -59,7 +59,6 @@ def test_train_then_predict_with_figure(tmp_path, small_bench, capsys):
         ]
     )
     out = capsys.readouterr()
-    assert code == 0, out.err
     doc = json.loads(out.out)
     assert doc["widths"] == [3, 6, 6, 6, 4, 4] and doc["ski"] == "classic"
     # 5 LM steps with the default patience of 25: either the budget ran out or LM found no
@@ -68,6 +67,15 @@ def test_train_then_predict_with_figure(tmp_path, small_bench, capsys):
     stopped_early = md["lm_steps_taken"][0] < 5
     assert doc["status"] == ("successful" if stopped_early else "max_steps_reached")
     assert md["status"] == doc["status"]
+    # trust audit finding 14: never null after a training; stopped by its step limit it did
+    # not converge (exit 3, the documented contract), the warning names the limit and the
+    # held-out error the network is judged by
+    assert doc["converged"] is stopped_early
+    assert code == (0 if stopped_early else 3), out.err
+    if not stopped_early:
+        assert "step limit (--lm-steps 5)" in doc["warnings"][0]
+        assert f"mean {doc['held_out_mean_error_um']:.3g} µm" in doc["warnings"][0]
+        assert "--lm-steps 5" in out.err and "exit code 3" in out.err
     assert (tmp_path / "small.npz").exists() and (tmp_path / "small.json").exists()
     fig = tmp_path / "profile.png"
     code = main(
@@ -84,6 +92,37 @@ def test_train_then_predict_with_figure(tmp_path, small_bench, capsys):
     )
     assert code == 0, capsys.readouterr().err
     assert fig.stat().st_size > 1000
+
+
+def test_adam_only_training_is_not_converged_and_says_why(tmp_path, small_bench, capsys):
+    """Without an LM phase Adam runs its fixed budget: no stopping criterion can be met, so
+    ``converged`` is false (exit 3) and the warning names ``--adam-steps``."""
+    from skisnow.bench import write_bench
+
+    bench = tmp_path / "bench.csv"
+    write_bench(small_bench, bench)
+    code = main(["train", str(bench), "--out", str(tmp_path / "a"), "--widths", "2,2,2,2,2,2",
+                 "--adam-steps", "5", "--lm-steps", "0", "--json"])  # fmt: skip
+    out = capsys.readouterr()
+    doc = json.loads(out.out)
+    assert code == 3, out.err
+    assert doc["converged"] is False and doc["stopped_by"] == ["step_limit"]
+    assert "--adam-steps 5, no LM phase" in doc["warnings"][0]
+    assert "held-out error: mean" in doc["warnings"][0]
+
+
+def test_training_converged_reads_the_stopping_reason() -> None:
+    from skisnow.cli._network import training_converged
+
+    meta = {"status": "successful", "stopped_by": ["patience"],
+            "options": {"lm_steps": 200, "adam_steps": 600, "patience": 25,
+                        "time_limit_s": 60.0},
+            "validation_errors": {"mean_um": 3.0, "p95_um": 9.0, "max_um": 20.0}}  # fmt: skip
+    assert training_converged(meta) == (True, None)
+    timed = {**meta, "status": "max_steps_reached", "stopped_by": ["patience", "time_limit"]}
+    ok, why = training_converged(timed)
+    assert ok is False and "time limit (60.0 s" in why and "in 1 of 2 members" in why
+    assert "mean 3 µm, p95 9 µm, max 20 µm" in why
 
 
 def test_bad_bench_file_and_corrupt_model(tmp_path, capsys):
