@@ -138,3 +138,89 @@ def test_presets_in_table1_ranges() -> None:
         assert rz_hi <= 13.0
         # areal values "near Table 4": Sa within a factor 2, Sdq within 0.1–0.25
         assert 0.8 <= r.Sa * 1e6 <= 3.5 and 0.1 <= r.Sdq <= 0.25, (name, r.Sa, r.Sdq)
+
+
+# ---- Sdq of a map with missing pixels (trust audit finding 13) ---------------------------------
+
+
+def _wavy_map(n: int = 256, d: float = 1e-6) -> np.ndarray:
+    """Two crossed sinusoids: a map of known, smoothly varying slope."""
+    x = np.arange(n) * d
+    xx, yy = np.meshgrid(x, x, indexing="ij")
+    return 1e-6 * np.sin(2 * np.pi * xx / (64 * d)) + 0.5e-6 * np.sin(2 * np.pi * yy / (32 * d))
+
+
+def _holes_where(h: np.ndarray, d: float, keep: str) -> np.ndarray:
+    """The map with the 2 % flattest or steepest interior pixels removed (NaN)."""
+    gx, gy = np.gradient(h, d)
+    slope = np.hypot(gx, gy)
+    interior = np.zeros(h.shape, bool)
+    interior[4:-4, 4:-4] = True
+    cut = np.quantile(slope[interior], 0.02 if keep == "flat" else 0.98)
+    sel = interior & ((slope <= cut) if keep == "flat" else (slope >= cut))
+    out = h.copy()
+    out[sel] = np.nan
+    return out
+
+
+def test_sdq_spread_brackets_the_complete_maps_value() -> None:
+    from skisnow.micro import sdq_spread
+
+    d = 1e-6
+    h = _wavy_map(d=d)
+    full = areal_parameters(make_topography(h, dx=d, dy=d))["Sdq"]
+    # the discrete slope of the complete map: rms of the forward differences of each sinusoid
+    k = 2 * np.sin(np.pi * d / np.array([64 * d, 32 * d])) / d
+    assert full == pytest.approx(np.hypot(1e-6 * k[0], 0.5e-6 * k[1]) / np.sqrt(2), rel=0.02)
+    assert sdq_spread(make_topography(h, dx=d, dy=d)) is None  # no holes: nothing to report
+    # holes where the surface is flattest: the skipping definitions lose low-slope pairs (above
+    # the complete value), the harmonic fill is the smoothest surface meeting the rims (below)
+    flat = sdq_spread(make_topography(_holes_where(h, d, "flat"), dx=d, dy=d))
+    assert flat is not None and flat.missing > 0
+    assert flat.low <= full <= flat.high
+    assert flat.values["filled"] == flat.low and flat.sdq == flat.values["skipped"]
+    assert flat.digits < 4  # the printed Sdq is rounded to what the holes leave of it
+
+
+def test_sdq_spread_filled_value_is_a_lower_bound() -> None:
+    """Dirichlet's principle: the harmonic fill minimises the squared differences inside the
+    holes, so it never exceeds the complete map's Sdq. Holes at the steepest pixels (as optical
+    profilers lose them) put every definition below the complete value: the spread then does NOT
+    bracket it, only the fill bounds it from below."""
+    from skisnow.micro import sdq_spread
+
+    d = 1e-6
+    h = _wavy_map(d=d)
+    full = areal_parameters(make_topography(h, dx=d, dy=d))["Sdq"]
+    steep = sdq_spread(make_topography(_holes_where(h, d, "steep"), dx=d, dy=d))
+    assert steep.high == steep.values["filled"] <= full
+    rng = np.random.default_rng(0)
+    for _ in range(5):
+        hh = h.copy()
+        for i, j in rng.integers(4, 250, size=(40, 2)):
+            hh[i : i + 3, j : j + 3] = np.nan
+        assert sdq_spread(make_topography(hh, dx=d, dy=d)).values["filled"] <= full
+
+
+@pytest.mark.shared
+def test_topo_of_a_real_map_with_holes_says_so(topography_dir, capsys) -> None:
+    import json
+
+    from skisnow.cli import main
+
+    f = str(topography_dir / "sur-2.sur")
+    assert main(["topo", f, "--form", "plane", "--cutoff-um", "0", "--json"]) == 0
+    doc = json.loads(capsys.readouterr().out)
+    holes = doc["Sdq_holes"]
+    assert holes["missing_pixels"] == doc["missing_pixels"] == 117
+    assert holes["definitions"]["skipped"]["Sdq"] == doc["parameters"]["Sdq"]
+    assert holes["low"] <= doc["parameters"]["Sdq"] <= holes["high"]
+    digits = holes["significant_digits"]
+    assert 1 <= digits < 4
+    assert main(["topo", f, "--form", "plane", "--cutoff-um", "0"]) == 0
+    text = capsys.readouterr().out
+    assert "note: Sdq of a map with 117 missing pixels" in text
+    assert f"{doc['parameters']['Sdq']:#.{digits}g}" in text
+    # a complete map: no note, Sdq to 4 digits
+    assert main(["topo", str(topography_dir / "x3p-2.x3p"), "--json"]) == 0
+    assert json.loads(capsys.readouterr().out)["Sdq_holes"] is None

@@ -89,6 +89,8 @@ def topo(
     _check_form(form)
     t = _load(file, pixel_um, height_unit)
     r = micro.roughness(t, cutoff=_cutoff(cutoff_um), form=form)
+    # the slope statistics of a map with holes depend on how the holes are treated
+    spread = micro.sdq_spread(micro.prepare(t, cutoff=_cutoff(cutoff_um), form=form))
     doc = {
         "source": t.source,
         "grid": list(t.shape),
@@ -98,6 +100,7 @@ def topo(
         "form": form,
         "cutoff_um": cutoff_um if cutoff_um > 0 else None,
         "parameters": _roughness_record(r),
+        "Sdq_holes": None if spread is None else spread.as_dict(),
     }
     if figure is not None:
         from skisnow.plot import save_figure, topography_figure
@@ -119,9 +122,20 @@ def topo(
         f"{t.dy * 1e6:.4g} µm, {t.n_missing} missing; form {form}, cut-off "
         f"{cutoff_um if cutoff_um > 0 else 'none'} µm"
     )
-    print_table(
-        "roughness", ["parameter", "value"], list(doc["parameters"].items()), floatfmt=".4g"
-    )
+    rows: list[list[Any]] = [[k, v] for k, v in doc["parameters"].items()]
+    if spread is not None:  # Sdq to the digits it is worth
+        rows = [[k, f"{v:#.{spread.digits}g}" if k == "Sdq" else v] for k, v in rows]
+    print_table("roughness", ["parameter", "value"], rows, floatfmt=".4g")
+    if spread is not None:
+        ways = ", ".join(f"{k} {v:.4g}" for k, v in spread.values.items())
+        console.print(
+            f"note: Sdq of a map with {spread.missing} missing pixels depends on how the holes "
+            f"are treated: {spread.low:.4g} to {spread.high:.4g} ({100 * spread.relative:.1f} % "
+            f"of the value; {ways}); printed: undefined pairs skipped, to "
+            f"{spread.digits} significant digit{'s' * (spread.digits != 1)}; the filled map "
+            "is the smoothest surface meeting the holes' rims, so for any surface under the "
+            f"holes Sdq ≥ {spread.values['filled']:.4g}"
+        )
     for p in doc.get("figures", []):
         console.print(f"figure: {p}")
 

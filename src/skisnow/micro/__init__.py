@@ -70,12 +70,15 @@ from skisnow.micro._ice import (
 from skisnow.micro._mirror import MirrorOperator
 from skisnow.micro._roughness import (
     DEFAULT_CUTOFF,
+    SDQ_DEFINITIONS,
     Roughness,
+    SdqSpread,
     areal_parameters,
     line_parameters,
     lowpass,
     prepare,
     roughness,
+    sdq_spread,
 )
 from skisnow.micro._stats import (
     Correlation,
@@ -104,6 +107,7 @@ __all__ = [
     "ICE",
     "PAPER_GRAIN_FIT",
     "PRESETS",
+    "SDQ_DEFINITIONS",
     "UHMWPE",
     "BearingMap",
     "BearingSweep",
@@ -118,6 +122,7 @@ __all__ = [
     "RankTable",
     "Regime",
     "Roughness",
+    "SdqSpread",
     "Topography",
     "areal_parameters",
     "bearing_area",
@@ -151,6 +156,7 @@ __all__ = [
     "roughness",
     "sample_grain_diameters",
     "scherge2021",
+    "sdq_spread",
     "slope_factor",
     "table4_comparison",
     "to_surface_topography",

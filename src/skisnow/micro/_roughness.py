@@ -31,11 +31,13 @@ from skisnow.micro._topography import (
 
 __all__ = [
     "Roughness",
+    "SdqSpread",
     "areal_parameters",
     "line_parameters",
     "lowpass",
     "prepare",
     "roughness",
+    "sdq_spread",
 ]
 
 #: Scherge et al.'s (2021) cut-off wavelength of the Fourier filter [m] (§2.1).
@@ -112,6 +114,108 @@ def areal_parameters(topo: Topography) -> dict[str, float]:
         "Ssk": float(np.mean(z**3) / m2**1.5) if m2 > 0 else 0.0,
         "Sku": float(np.mean(z**4) / m2**2) if m2 > 0 else 0.0,
     }
+
+
+#: The definitions of Sdq on a map with missing pixels compared by :func:`sdq_spread`.
+SDQ_DEFINITIONS: dict[str, str] = {
+    "skipped": "finite differences, undefined pairs skipped (SurfaceTopography rms_gradient; "
+    "the Sdq skisnow prints)",
+    "joint": "finite differences at pixels whose x and y differences are both defined",
+    "components": "mean square x and y differences averaged separately over their defined pairs",
+    "filled": "holes filled by harmonic interpolation first (the smoothest surface meeting the "
+    "holes' rims), then every pair",
+}
+
+
+@dataclass(frozen=True)
+class SdqSpread:
+    """Sdq of a map with missing pixels under each reasonable treatment of its holes.
+
+    ``values`` maps each definition of :data:`SDQ_DEFINITIONS` to its Sdq; ``low``/``high``
+    their range; ``sdq`` the value skisnow reports (``skipped``). ``digits`` is the number of
+    significant digits the reported value is worth: its last digit at the order of the range.
+    """
+
+    missing: int
+    sdq: float
+    values: dict[str, float]
+    low: float
+    high: float
+
+    @property
+    def relative(self) -> float:
+        """(high − low) / sdq."""
+        return (self.high - self.low) / self.sdq if self.sdq > 0 else float("nan")
+
+    @property
+    def digits(self) -> int:
+        """Significant digits of ``sdq`` worth printing (≥ 1): the last one at the range's order."""
+        width = self.high - self.low
+        if not (width > 0 and self.sdq > 0):
+            return 4
+        return max(1, int(np.floor(np.log10(self.sdq)) - np.floor(np.log10(width))) + 1)
+
+    def as_dict(self) -> dict[str, object]:
+        """Plain dictionary (JSON): the definitions with their values, the range, the digits."""
+        return {
+            "missing_pixels": self.missing,
+            "reported": "skipped",
+            "definitions": {
+                k: {"Sdq": v, "treatment": SDQ_DEFINITIONS[k]} for k, v in self.values.items()
+            },
+            "low": self.low,
+            "high": self.high,
+            "relative_spread": self.relative,
+            "significant_digits": self.digits,
+        }
+
+
+def sdq_spread(topo: Topography) -> SdqSpread | None:
+    """How much Sdq = √⟨|∇h|²⟩ of a map with missing pixels depends on how its holes are treated.
+
+    A slope needs two neighbouring pixels; a hole removes the pairs around it, and the
+    reasonable definitions (:data:`SDQ_DEFINITIONS`: skip the undefined pairs as
+    SurfaceTopography's ``rms_gradient`` does; only pixels where both components are defined;
+    each component over its own defined pairs; the holes filled by harmonic interpolation,
+    SurfaceTopography ``interpolate_undefined_data('harmonic')``) then differ. On a complete
+    map they agree up to the edge pairs and there is nothing to report: ``None``.
+
+    The harmonic fill minimises the sum of squared differences inside the holes for the given
+    rims (Dirichlet's principle), so ``filled`` is at most the Sdq of any surface that meets
+    the rims; the skipping definitions are averages over the defined pairs, unbiased only if
+    the holes sit at pixels of typical slope (optical profilers lose the steepest ones).
+
+    Parameters
+    ----------
+    topo
+        the map as the roughness parameters see it (:func:`prepare`), holes as NaN.
+
+    Returns
+    -------
+    SdqSpread or None
+        ``None`` when no pixel is missing.
+    """
+    if topo.n_missing == 0:
+        return None
+    h = np.asarray(topo.heights, dtype=np.float64)
+    h = h - np.nanmean(h)
+    gx = np.diff(h, axis=0) / topo.dx
+    gy = np.diff(h, axis=1) / topo.dy
+    filled = fill_missing(make_topography(h, dx=topo.dx, dy=topo.dy))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        skipped = float(to_surface_topography(make_topography(h, dx=topo.dx, dy=topo.dy))
+                        .rms_gradient())  # fmt: skip
+        full = float(to_surface_topography(filled).rms_gradient())
+        values = {
+            "skipped": skipped,
+            "joint": float(np.sqrt(np.nanmean(gx[:, :-1] ** 2 + gy[:-1, :] ** 2))),
+            "components": float(np.sqrt(np.nanmean(gx**2) + np.nanmean(gy**2))),
+            "filled": full,
+        }
+    v = np.array(list(values.values()))
+    return SdqSpread(missing=int(topo.n_missing), sdq=skipped, values=values,
+                     low=float(v.min()), high=float(v.max()))  # fmt: skip
 
 
 def line_parameters(topo: Topography, *, axis: int = 0, n_sampling: int = 5) -> dict[str, float]:
