@@ -122,6 +122,37 @@ def calibrate(fits, alpha: float, boot: int) -> tuple[float, float]:
     return pooled_k["ei"], pooled_k["z0"]
 
 
+def _plugin_scale(units, alpha: float) -> float:
+    """The smallest k whose mean loss over the calibration units is <= alpha (no finite-sample
+    term: what the calibration skis alone ask for)."""
+    cand = np.unique(np.concatenate([[0.0], *units])) / 2.0
+    risk = np.mean([[np.mean(u > 2 * k) for k in cand] for u in units], axis=0)
+    return float(cand[np.argmax(risk <= alpha * (1.0 + 1e-12))])
+
+
+def sizes(fits, alphas, sub: int, draws: int) -> None:
+    """How much of the factor is the finite-sample term: per quantity and alpha, the conformal
+    factor on all units, its median (5 / 95 %) over ``draws`` random subsets of ``sub`` units
+    (without replacement), and the plug-in factor (mean loss <= alpha, no +1)."""
+    skis = sorted({s for s, _, _ in fits}, key=lambda s: (len(s), s))
+    rng = np.random.default_rng(1)
+    print(f"\nfactor vs calibration size ({len(skis)} skis; subsets of {sub}, {draws} draws)")
+    print("| quantity | alpha | conformal, all skis | conformal, subsets: 5 / 50 / 95 % "
+          "| plug-in (no +1), all skis |")  # fmt: skip
+    print("| --- | --- | --- | --- | --- |")
+    for q in ("ei", "z0"):
+        units = [np.concatenate([f[2][q] for f in fits if f[0] == s]) for s in skis]
+        units = [u for u in units if u.size]
+        for alpha in alphas:
+            k = calibrated_scale(units, alpha=alpha)
+            ks = [calibrated_scale([units[i] for i in rng.choice(len(units), sub, replace=False)],
+                                   alpha=alpha) for _ in range(draws)]  # fmt: skip
+            lo, mid, hi = np.quantile(ks, [0.05, 0.5, 0.95])
+            kp = _plugin_scale(units, alpha)
+            print(f"| {'EI' if q == 'ei' else 'z0'} | {alpha:g} | {k:.3f} "
+                  f"| {lo:.2f} / {mid:.2f} / {hi:.2f} | {kp:.3f} |")  # fmt: skip
+
+
 def predict(sets, k_ei: float, k_z0: float) -> None:
     print(f"\nprediction with k_EI = {k_ei:g}, k_z0 = {k_z0:g} (nothing refitted to these skis)")
     print(
@@ -184,6 +215,9 @@ def main() -> None:
         help="also predict with the factors calibrated here (rounded up to 0.01)",
     )
     ap.add_argument("--no-full", action="store_true", help="shop prediction sets only")
+    ap.add_argument("--sizes", type=int, default=0, metavar="N",
+                    help="also the factor on random subsets of N calibration skis and the "
+                    "plug-in factor, at alpha 0.05, 0.08, 0.10")  # fmt: skip
     ap.add_argument("--calibrate-plan", default="shop", choices=["shop", "full"],
                     help="full: the full plan's own factors")  # fmt: skip
     a = ap.parse_args()
@@ -198,7 +232,10 @@ def main() -> None:
         predict([("held out", "full", full)], float(k_ei), float(k_z0))
         print(f"load average at end: {os.getloadavg()}")
         return
-    k_ei, k_z0 = calibrate(load(a.store, _skis(a.calibrate), a.noise_um, "shop"), a.alpha, a.boot)
+    cal = load(a.store, _skis(a.calibrate), a.noise_um, "shop")
+    k_ei, k_z0 = calibrate(cal, a.alpha, a.boot)
+    if a.sizes:
+        sizes(cal, (0.05, 0.08, 0.10), a.sizes, a.boot)
     if a.predict or a.predict_calibrated:
         sets = [
             ("seeded skis 15-24", "shop", load(a.store, _skis(["15-24"]), a.noise_um, "shop")),
