@@ -104,7 +104,8 @@ def calibrate(fits, alpha: float, boot: int) -> tuple[float, float]:
     for q in ("ei", "z0"):
         for noise in (None, 5.0, 10.0):
             sel = [f for f in fits if noise is None or f[1] == noise]
-            units = [np.concatenate([f[2][q] for f in sel if f[0] == s]) for s in skis]
+            units = [np.concatenate([f[2][q] for f in sel if f[0] == s])
+                     for s in skis if any(f[0] == s for f in sel)]  # fmt: skip
             units = [u for u in units if u.size]
             k = calibrated_scale(units, alpha=alpha)
             ks = [calibrated_scale([units[i] for i in rng.integers(0, len(units), len(units))],
