@@ -148,10 +148,14 @@ def sizes(fits, alphas, sub: int, draws: int) -> None:
             k = calibrated_scale(units, alpha=alpha)
             ks = [calibrated_scale([units[i] for i in rng.choice(len(units), sub, replace=False)],
                                    alpha=alpha) for _ in range(draws)]  # fmt: skip
-            lo, mid, hi = np.quantile(ks, [0.05, 0.5, 0.95])
             kp = _plugin_scale(units, alpha)
+            if np.all(np.isfinite(ks)):
+                lo, mid, hi = np.quantile(ks, [0.05, 0.5, 0.95])
+                sub_k = f"{lo:.2f} / {mid:.2f} / {hi:.2f}"
+            else:  # 1/(sub + 1) > alpha: no factor can meet the rule
+                sub_k = f"inf in {int(np.sum(np.isinf(ks)))} of {len(ks)} draws"
             print(f"| {'EI' if q == 'ei' else 'z0'} | {alpha:g} | {k:.3f} "
-                  f"| {lo:.2f} / {mid:.2f} / {hi:.2f} | {kp:.3f} |")  # fmt: skip
+                  f"| {sub_k} | {kp:.3f} |")  # fmt: skip
 
 
 def predict(sets, k_ei: float, k_z0: float) -> None:
