@@ -38,3 +38,25 @@ def test_fleet_section_shows_the_intervals_of_an_identified_ski() -> None:
     row = next(r for r in cmp.ranking("peak-pressure") if r["ski"] == "identified")
     assert f"{row['interval'][0]:.4g} – {row['interval'][1]:.4g}" in page
     assert "no uncertainty recorded" in page  # the shipped skate
+
+
+def test_a_skate_cycle_has_no_grip_wax_rows() -> None:
+    """A ski without a kick zone has no grip wax: the report and the CLI record say nothing
+    of it (no 'grip wax touches 0 s'), the classic's section keeps those rows (above)."""
+    from skisnow.cli._workflows_cycle import summary_record
+
+    ds = run_cycle(
+        "skate",
+        template_history("skate_g3", body_mass=70, n_frames=8),
+        snow_modulus=100e6,
+        n_points=512,
+    )
+    assert not ds.attrs["kick_zone"]
+    page = render_page("t", "s", [cycle_section(ds)])
+    assert "grip wax" not in page and "kick marks" not in page and "touch-downs" not in page
+    assert f"{float(ds['load'].max()):.3g}" in page  # the rest is shown
+    rec = summary_record(ds)
+    kick = ["kick_contact_time_s", "kick_fraction_of_loaded", "first_touch_s", "last_touch_s",
+            "touch_downs", "max_kick_share", "max_kick_length_mm"]  # fmt: skip
+    assert all(rec[k] is None for k in kick)
+    assert rec["loaded_time_s"] > 0 and rec["peak_force_n"] > 0

@@ -84,18 +84,21 @@ def summary_record(ds: Any) -> dict[str, Any]:
     from skisnow.workflows import kick_contact_summary
 
     s = kick_contact_summary(ds)
+    # a ski without a kick zone (a skate) has no grip wax: its kick values are absent (None:
+    # a dash in text, an empty CSV cell, JSON null), not a contact time of 0 s
+    kick = bool(ds.attrs.get("kick_zone"))
     return {
         "history": ds.attrs["history"],
         "route": ds.attrs["route"],
-        "kick_contact_time_s": s["contact_time"],
+        "kick_contact_time_s": s["contact_time"] if kick else None,
         "loaded_time_s": s["loaded_time"],
-        "kick_fraction_of_loaded": s["fraction_of_loaded"],
-        "first_touch_s": s["first_touch"],
-        "last_touch_s": s["last_touch"],
-        "touch_downs": s["episodes"],
+        "kick_fraction_of_loaded": s["fraction_of_loaded"] if kick else None,
+        "first_touch_s": s["first_touch"] if kick else None,
+        "last_touch_s": s["last_touch"] if kick else None,
+        "touch_downs": s["episodes"] if kick else None,
         "time_resolution_s": s["resolution"],  # one frame interval: what the times are worth
-        "max_kick_share": s["max_kick_share"],
-        "max_kick_length_mm": s["max_kick_length"] * 1e3,
+        "max_kick_share": s["max_kick_share"] if kick else None,
+        "max_kick_length_mm": s["max_kick_length"] * 1e3 if kick else None,
         "peak_force_n": float(np.max(ds["load"].values)),
         "peak_pressure_kpa": float(np.nanmax(ds["max_pressure"].values, initial=0.0) * 1e-3),
     }
@@ -322,7 +325,8 @@ def cycle(
     for note in notes:
         show(f"note: {note}", style="bold yellow")
     print_table(
-        f"Kick-zone contact over the cycle: {results[0][1].attrs['ski']} on "
+        f"{'Kick-zone contact' if results[0][1].attrs.get('kick_zone') else 'Contact'} over "
+        f"the cycle: {results[0][1].attrs['ski']} on "
         f"{snow_modulus_mpa:g} MPa snow",
         [
             "cycle",

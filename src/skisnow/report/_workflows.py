@@ -21,21 +21,22 @@ def cycle_section(ds: Any) -> Section:
 
     s = kick_contact_summary(ds)
     a = ds.attrs
-    table = Table(
-        ["quantity", "value"],
-        [
-            ("cycle", a["history"]),
-            ("profile route", a["route"]),
-            ("snow modulus [MPa]", a["snow_modulus"] * 1e-6),
-            ("peak force on the ski [N]", float(ds["load"].max())),
-            ("grip wax touches [s]", s["contact_time"]),
-            ("ski loaded [s]", s["loaded_time"]),
+    rows: list[tuple[str, Any]] = [
+        ("cycle", a["history"]),
+        ("profile route", a["route"]),
+        ("snow modulus [MPa]", a["snow_modulus"] * 1e-6),
+        ("peak force on the ski [N]", float(ds["load"].max())),
+        ("ski loaded [s]", s["loaded_time"]),
+    ]
+    kick = bool(a.get("kick_zone"))  # a skate has no kick zone: no grip-wax rows
+    if kick:
+        rows[4:4] = [("grip wax touches [s]", s["contact_time"])]
+        rows += [
             ("first / last touch [s]", f"{s['first_touch']:.3g} / {s['last_touch']:.3g}"),
             ("touch-downs", s["episodes"]),
             ("largest load share between the kick marks [%]", 100 * s["max_kick_share"]),
-        ],
-        floatfmt=".3g",
-    )
+        ]
+    table = Table(["quantity", "value"], rows, floatfmt=".3g")
     notes = [
         f"Each of the {ds.sizes['time']} frames is one load case (Kalliorinne et al. 2023, "
         "§3.1: a stride followed as a sequence of load cases), solved warm-started from the "
@@ -45,7 +46,7 @@ def cycle_section(ds: Any) -> Section:
         notes.append(a["route_note"] + ".")
     caption = (
         "Load and centre of pressure, zone lengths, mean and peak pressures and load shares "
-        "over the cycle; shaded: the grip wax touches the snow."
+        "over the cycle" + ("; shaded: the grip wax touches the snow." if kick else ".")
     )
     return Section(
         f"Contact over a cycle: {a['history']}",
