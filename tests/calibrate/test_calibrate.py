@@ -183,6 +183,14 @@ def test_a_seeded_fit_never_ends_worse_than_its_start(monkeypatch: pytest.Monkey
     assert misfit <= start_misfit
 
 
+def _same_numbers(written, shipped) -> None:
+    """The written ski's values are the shipped file's to 1e-12 relative (1e-9 µm on a camber of
+    a mm): the same numbers, not bitwise — NumPy/SciPy take different SIMD/FMA paths on different
+    CPUs (seen: the shipped classic regenerated on another machine differs in the last bit at
+    one station of 401), which floating point does not promise to make identical."""
+    np.testing.assert_allclose(np.asarray(written), np.asarray(shipped), rtol=1e-12, atol=0.0)
+
+
 def test_the_command_and_the_shim_write_the_shipped_skis(tmp_path: Path) -> None:
     """``skisnow calibrate --write-shipped RECORD --ski-out FILE`` and the shim the shipped
     files' provenance cites write the shipped ski (same EI, z0, kick zone, provenance method)."""
@@ -190,8 +198,8 @@ def test_the_command_and_the_shim_write_the_shipped_skis(tmp_path: Path) -> None
     out = tmp_path / "classic.json"
     assert main(["calibrate", "--write-shipped", str(record), "--ski-out", str(out)]) == 0
     written, shipped = read_ski(out), get_ski("classic")
-    assert written.stiffness_values == shipped.stiffness_values
-    assert written.camber_values == shipped.camber_values
+    _same_numbers(written.stiffness_values, shipped.stiffness_values)
+    _same_numbers(written.camber_values, shipped.camber_values)
     assert written.kick_zone == shipped.kick_zone
     assert written.provenance.method == shipped.provenance.method
     assert "benchmarks/calibrate_skis.py" in written.provenance.method
@@ -204,7 +212,7 @@ def test_the_command_and_the_shim_write_the_shipped_skis(tmp_path: Path) -> None
     finally:
         sys.argv = argv
     assert stop.value.code == 0
-    assert read_ski(shim_out).camber_values == shipped.camber_values
+    _same_numbers(read_ski(shim_out).camber_values, shipped.camber_values)
 
 
 @pytest.mark.parametrize("kind", ["classic", "skate"])
@@ -224,8 +232,8 @@ def test_the_reproduction_skis_are_written_from_their_records(kind: str, tmp_pat
     assert main(["calibrate", "--write-shipped", str(record), "--ski-out", str(out)]) == 0
     written = read_ski(out)
     assert written.name == f"{kind}-k22" and written.kind == kind
-    assert written.stiffness_values == shipped.stiffness_values
-    assert written.camber_values == shipped.camber_values
+    _same_numbers(written.stiffness_values, shipped.stiffness_values)
+    _same_numbers(written.camber_values, shipped.camber_values)
     assert written.kick_zone == shipped.kick_zone
     assert "REPRODUCTION" in written.description and "k " in written.description
     departures = json.loads(written.provenance.detail("departures"))
