@@ -112,7 +112,7 @@ def test_adam_only_training_is_not_converged_and_says_why(tmp_path, small_bench,
 
 
 def test_training_converged_reads_the_stopping_reason() -> None:
-    from skisnow.cli._network import training_converged
+    from skisnow.network import training_converged
 
     meta = {"status": "successful", "stopped_by": ["patience"],
             "options": {"lm_steps": 200, "adam_steps": 600, "patience": 25,

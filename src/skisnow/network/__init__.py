@@ -19,6 +19,7 @@ May import: ski, bench
 from __future__ import annotations
 
 from skisnow._lazy import lazy_getattr
+from skisnow.network._converged import training_converged
 from skisnow.network._files import (
     MODEL_FORMAT,
     MODEL_FORMAT_VERSION,
@@ -76,6 +77,7 @@ __all__ = [
     "shipped_network",
     "split_conditions",
     "train_network",
+    "training_converged",
     "widen_network",
     "write_model_files",
 ]
