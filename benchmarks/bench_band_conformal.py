@@ -103,10 +103,7 @@ def calibrate(fits, alpha: float, boot: int) -> tuple[float, float]:
     pooled_k: dict[str, float] = {}
     for q in ("ei", "z0"):
         for noise in (None, 5.0, 10.0):
-            sel = [f for f in fits if noise is None or f[1] == noise]
-            units = [np.concatenate([f[2][q] for f in sel if f[0] == s])
-                     for s in skis if any(f[0] == s for f in sel)]  # fmt: skip
-            units = [u for u in units if u.size]
+            units = _units([f for f in fits if noise is None or f[1] == noise], skis, q)
             k = calibrated_scale(units, alpha=alpha)
             ks = [calibrated_scale([units[i] for i in rng.integers(0, len(units), len(units))],
                                    alpha=alpha) for _ in range(boot)]  # fmt: skip
@@ -123,12 +120,25 @@ def calibrate(fits, alpha: float, boot: int) -> tuple[float, float]:
     return pooled_k["ei"], pooled_k["z0"]
 
 
+def _units(fits, skis, q: str) -> list[np.ndarray]:
+    """One calibration unit per ski of ``skis`` with a fit in ``fits``: the normalised errors of
+    ``q`` at the determined stations of all its fits."""
+    units = [np.concatenate([f[2][q] for f in fits if f[0] == s])
+             for s in skis if any(f[0] == s for f in fits)]  # fmt: skip
+    return [u for u in units if u.size]
+
+
+def _round_up(k: float) -> float:
+    """A factor rounded up to 0.01 (as the library's constants are)."""
+    return float(np.ceil(100 * k) / 100)
+
+
 def _plugin_scale(units, alpha: float) -> float:
     """The smallest k whose mean loss over the calibration units is <= alpha (no finite-sample
-    term: what the calibration skis alone ask for)."""
-    cand = np.unique(np.concatenate([[0.0], *units])) / 2.0
-    risk = np.mean([[np.mean(u > 2 * k) for k in cand] for u in units], axis=0)
-    return float(cand[np.argmax(risk <= alpha * (1.0 + 1e-12))])
+    term: what the calibration skis alone ask for). The conformal rule (Σ L + 1)/(n + 1) <= α'
+    is that rule at α' = (n α + 1)/(n + 1)."""
+    n = len(units)
+    return calibrated_scale(units, alpha=(n * alpha + 1.0) / (n + 1.0))
 
 
 def sizes(fits, alphas, sub: int, draws: int) -> None:
@@ -142,8 +152,7 @@ def sizes(fits, alphas, sub: int, draws: int) -> None:
           "| plug-in (no +1), all skis |")  # fmt: skip
     print("| --- | --- | --- | --- | --- |")
     for q in ("ei", "z0"):
-        units = [np.concatenate([f[2][q] for f in fits if f[0] == s]) for s in skis]
-        units = [u for u in units if u.size]
+        units = _units(fits, skis, q)
         for alpha in alphas:
             k = calibrated_scale(units, alpha=alpha)
             ks = [calibrated_scale([units[i] for i in rng.choice(len(units), sub, replace=False)],
@@ -232,9 +241,9 @@ def main() -> None:
         # skis in --full-store), predicted on the held-out skis' full plans
         k_ei, k_z0 = calibrate(load(a.full_store, _skis(a.calibrate), a.noise_um, "full"),
                                a.alpha, a.boot)  # fmt: skip
-        k_ei, k_z0 = np.ceil(100 * k_ei) / 100, np.ceil(100 * k_z0) / 100
+        k_ei, k_z0 = _round_up(k_ei), _round_up(k_z0)
         full = load(a.full_store, VALIDATION, a.noise_um, "full")
-        predict([("held out", "full", full)], float(k_ei), float(k_z0))
+        predict([("held out", "full", full)], k_ei, k_z0)
         print(f"load average at end: {os.getloadavg()}")
         return
     cal = load(a.store, _skis(a.calibrate), a.noise_um, "shop")
@@ -251,8 +260,7 @@ def main() -> None:
         if a.predict:
             predict(sets, CONFORMAL_SCALE_EI, CONFORMAL_SCALE_Z0)
         if a.predict_calibrated:
-            k_ei, k_z0 = np.ceil(100 * k_ei) / 100, np.ceil(100 * k_z0) / 100
-            predict(sets, float(k_ei), float(k_z0))
+            predict(sets, _round_up(k_ei), _round_up(k_z0))
     print(f"load average at end: {os.getloadavg()}")
 
 
